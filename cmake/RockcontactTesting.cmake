@@ -1,0 +1,16 @@
+# rockcontact_add_test(NAME SOURCES... [LIBS ...] [CGAL])
+# One Boost.Test executable per concept, registered with CTest. Boost.Test is linked
+# as a shared library (BOOST_TEST_DYN_LINK) so no test recompiles the framework.
+function(rockcontact_add_test name)
+  cmake_parse_arguments(ARG "CGAL" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} rockcontact_options
+    Boost::unit_test_framework)
+  target_compile_definitions(${name} PRIVATE BOOST_TEST_DYN_LINK
+    ROCKCONTACT_TESTDATA_DIR="${PROJECT_SOURCE_DIR}/robustness_tests/data"
+    ROCKCONTACT_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples")
+  if(ARG_CGAL)
+    target_link_libraries(${name} PRIVATE CGAL::CGAL)
+  endif()
+  add_test(NAME ${name} COMMAND ${name} --log_level=message --report_level=short)
+endfunction()

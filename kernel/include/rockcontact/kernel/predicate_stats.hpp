@@ -1,0 +1,64 @@
+#pragma once
+// Thread-local counters of predicate calls and exact fallbacks.
+//
+// Every filtered predicate counts its calls and the calls whose floating-point filter could
+// not certify the sign (fallbacks). The counters are per thread, cost two increments of a
+// thread-local array, and compile to nothing when ROCKCONTACT_PREDICATE_STATS is 0. Read them
+// with predicate_counters(), difference two snapshots to attribute work to a block of code.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace rockcontact::kernel {
+
+enum class PredicateKind : std::uint8_t {
+  cross,          // sign of (p1 - p0) x (q1 - q0)         degree 2
+  crossing_side,  // side of a line-line crossing point    degree 4
+  count
+};
+inline constexpr std::size_t predicate_kind_count = static_cast<std::size_t>(PredicateKind::count);
+
+struct PredicateCounters {
+  std::array<std::uint64_t, predicate_kind_count> calls{};
+  std::array<std::uint64_t, predicate_kind_count> fallbacks{};
+
+  std::uint64_t total_calls() const {
+    std::uint64_t sum = 0;
+    for (auto c : calls) sum += c;
+    return sum;
+  }
+  std::uint64_t total_fallbacks() const {
+    std::uint64_t sum = 0;
+    for (auto c : fallbacks) sum += c;
+    return sum;
+  }
+  friend PredicateCounters operator-(PredicateCounters a, const PredicateCounters& b) {
+    for (std::size_t i = 0; i < predicate_kind_count; ++i) {
+      a.calls[i] -= b.calls[i];
+      a.fallbacks[i] -= b.fallbacks[i];
+    }
+    return a;
+  }
+};
+
+namespace detail {
+inline thread_local PredicateCounters thread_counters;
+
+inline void count_call([[maybe_unused]] PredicateKind kind) {
+#if ROCKCONTACT_PREDICATE_STATS
+  ++thread_counters.calls[static_cast<std::size_t>(kind)];
+#endif
+}
+inline void count_fallback([[maybe_unused]] PredicateKind kind) {
+#if ROCKCONTACT_PREDICATE_STATS
+  ++thread_counters.fallbacks[static_cast<std::size_t>(kind)];
+#endif
+}
+}  // namespace detail
+
+// A snapshot of this thread's counters (all zero when statistics are compiled out).
+inline PredicateCounters predicate_counters() { return detail::thread_counters; }
+inline void reset_predicate_counters() { detail::thread_counters = {}; }
+
+}  // namespace rockcontact::kernel

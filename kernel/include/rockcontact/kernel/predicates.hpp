@@ -1,0 +1,118 @@
+#pragma once
+// Geometric predicates under a number policy. Each returns a Sign.
+//
+//   cross_sign(p0, p1, q0, q1)      sign of (p1 - p0) x (q1 - q0)
+//   orientation(p, q, r)            sign of (q - p) x (r - p): positive = left turn (CCW)
+//   crossing_side(a, b, c)          side of the crossing point of lines a and b w.r.t. line c
+//
+// All of them read input coordinates only. cross_sign covers the derived points the library
+// decides on: an entrance-block vertex b_j - a_i tested against an entrance-block edge reduces
+// to a cross product of two input differences (see entrance_block.hpp), and a clipped point is
+// a line-line crossing, tested with crossing_side on the lines' defining input points.
+//
+// Three stages, as in CGAL's filtered kernel and geogram's PCK:
+//   1. filter: the formula in double with a proven error bound; answers when |value| > bound;
+//   2. exact:  the same formula in GMP rationals (kernel/src/predicates_exact.cpp);
+//   3. no symbolic perturbation: a zero is a real answer (touching contact), not a tie to break.
+// The Float policy stops after evaluating stage 1's value without the bound; the Exact policy
+// goes straight to stage 2.
+
+#include <cmath>
+
+#include "rockcontact/kernel/detail/error_bounded.hpp"
+#include "rockcontact/kernel/detail/predicate_formulas.hpp"
+#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/kernel/point.hpp"
+#include "rockcontact/kernel/predicate_stats.hpp"
+#include "rockcontact/kernel/sign.hpp"
+
+namespace rockcontact::kernel {
+
+using detail::Line;
+
+namespace detail {
+
+Sign cross_sign_exact(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1);
+Sign crossing_side_value_sign_exact(const Line& a, const Line& b, const Line& c);
+
+inline constexpr auto double_diff = [](double a, double b) { return a - b; };
+
+// Static-filter constant for the cross product, Shewchuk's ccwerrboundA:
+//   |det - fl(det)| <= (3u + 16u^2) (|ux vy| + |uy vx|)
+// where ux = fl(p1.x - p0.x), ... are the rounded differences. Derivation (u = 2^-53): each
+// difference carries a relative error <= u, each product adds u, the final subtraction adds u;
+// collecting first-order terms gives 3u per product magnitude, and the (1 + u)^k cross terms
+// are bounded by 16u^2 (Shewchuk 1997, section 4.2). The bound ignores underflow, so the filter
+// adds the absolute term 2^-1070, which exceeds the at most three subnormal roundings
+// (2^-1075 each) of the products and subtraction. tests/predicates_test.cpp re-derives the bound.
+inline constexpr double cross_error_factor = (3.0 + 16.0 * unit_roundoff) * unit_roundoff;
+inline constexpr double cross_underflow_term = 0x1p-1070;
+
+inline Sign cross_sign_filtered(const Point2& p0, const Point2& p1, const Point2& q0,
+                                const Point2& q1) {
+  count_call(PredicateKind::cross);
+  const double ux = p1.x - p0.x, uy = p1.y - p0.y;
+  const double vx = q1.x - q0.x, vy = q1.y - q0.y;
+  const double left = ux * vy;
+  const double right = uy * vx;
+  const double det = left - right;
+  const double bound = cross_error_factor * (std::fabs(left) + std::fabs(right)) + cross_underflow_term;
+  if (det > bound) return Sign::positive;
+  if (-det > bound) return Sign::negative;
+  // A difference of two doubles is zero exactly when they are equal, so a product with a zero
+  // difference factor is exactly zero: the common axis-aligned touching case needs no GMP.
+  if ((ux == 0.0 || vy == 0.0) && (uy == 0.0 || vx == 0.0)) return Sign::zero;
+  count_fallback(PredicateKind::cross);
+  return cross_sign_exact(p0, p1, q0, q1);
+}
+
+inline Sign crossing_side_value_sign_filtered(const Line& a, const Line& b, const Line& c) {
+  count_call(PredicateKind::crossing_side);
+  const ErrorBounded value =
+      crossing_side_formula<ErrorBounded>(a, b, c, [](double x, double y) {
+        return ErrorBounded::difference(x, y);
+      });
+  if (const auto sign = certain_sign(value)) return *sign;
+  count_fallback(PredicateKind::crossing_side);
+  return crossing_side_value_sign_exact(a, b, c);
+}
+
+}  // namespace detail
+
+template <NumberPolicy Policy>
+Sign cross_sign(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1) {
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    detail::count_call(PredicateKind::cross);
+    return sign_of(detail::cross_formula<double>(p0, p1, q0, q1, detail::double_diff));
+  } else if constexpr (Policy::kind == PolicyKind::filtered) {
+    return detail::cross_sign_filtered(p0, p1, q0, q1);
+  } else {
+    detail::count_call(PredicateKind::cross);
+    return detail::cross_sign_exact(p0, p1, q0, q1);
+  }
+}
+
+template <NumberPolicy Policy>
+Sign orientation(const Point2& p, const Point2& q, const Point2& r) {
+  return cross_sign<Policy>(p, q, p, r);
+}
+
+// Side of the crossing point of lines a and b with respect to line c: positive when it lies
+// to the left of c (c oriented from c.p to c.q). Precondition: a and b are not parallel.
+template <NumberPolicy Policy>
+Sign crossing_side(const Line& a, const Line& b, const Line& c) {
+  const Sign denominator = cross_sign<Policy>(a.p, a.q, b.p, b.q);
+  Sign value;
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    detail::count_call(PredicateKind::crossing_side);
+    value = sign_of(detail::crossing_side_formula<double>(a, b, c, detail::double_diff));
+  } else if constexpr (Policy::kind == PolicyKind::filtered) {
+    value = detail::crossing_side_value_sign_filtered(a, b, c);
+  } else {
+    detail::count_call(PredicateKind::crossing_side);
+    value = detail::crossing_side_value_sign_exact(a, b, c);
+  }
+  return value * denominator;
+}
+
+}  // namespace rockcontact::kernel
