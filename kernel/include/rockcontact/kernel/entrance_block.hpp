@@ -2,7 +2,7 @@
 // The entrance block and the overlap verdict of two convex polygons (seed 000 §3.1.2, eq. 9,
 // Tables 1-2).
 //
-//   E(A, B) = B - A + a0 = { b - a + a0 : a in A, b in B },  a0 = centroid of A.
+//   E(A, B) = B - A + a0 = { b - a + a0 : a in A, b in B },  a0 = mean of A's vertices (any interior point of A serves).
 //
 // A and B overlap exactly when a0 lies in E(A, B): inside = interiors intersect (overlap), on
 // the boundary = boundaries touch, outside = separate.
@@ -46,7 +46,7 @@ Overlap classify_overlap(const ConvexPolygon& a, const ConvexPolygon& b);
 
 struct EntranceBlock {
   std::vector<Point2> vertices;  // E(A,B), CCW, strictly convex; coordinates rounded once (m)
-  Point2 reference;              // a0, the centroid of A (m)
+  Point2 reference;              // a0, the mean of A's vertices (m), rounded once
   Overlap status = Overlap::separate;
   // Distance from a0 to the boundary of E (m), >= 0: for `separate` the gap A must travel to
   // touch B; for `overlap` the minimum translation distance that separates them; 0 for `touch`.

@@ -60,6 +60,7 @@ struct ClipWorkspace {
   };
   std::vector<Node> current, next;
   std::vector<signed char> side;
+  std::vector<unsigned char> on_clip_line;
 };
 
 template <NumberPolicy Policy>

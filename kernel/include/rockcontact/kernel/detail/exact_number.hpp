@@ -9,8 +9,10 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "rockcontact/kernel/detail/number_ops.hpp"
+#include "rockcontact/kernel/number_policy.hpp"
 
 namespace rockcontact::kernel::detail {
 
@@ -28,6 +30,16 @@ struct NumberOps<mpq_class> {
   }
 };
 
-inline auto exact_diff = [](double a, double b) { return mpq_class(a) - mpq_class(b); };
+// Returns mpq_class, not a GMP expression template (which would dangle its temporaries).
+inline auto exact_diff = [](double a, double b) -> mpq_class { return mpq_class(a) - mpq_class(b); };
+
+}  // namespace rockcontact::kernel::detail
+
+namespace rockcontact::kernel::detail {
+
+// The number type a policy constructs in.
+template <class Policy>
+using ConstructionType =
+    std::conditional_t<Policy::kind == PolicyKind::exact, mpq_class, double>;
 
 }  // namespace rockcontact::kernel::detail

@@ -1,7 +1,7 @@
 #pragma once
 // NumberOps<FT>: the operations FT-generic constructions need beyond + - * / and comparison.
 // The double specialisation lives here; the GMP one in exact_number.hpp (kernel .cpp files only).
-// ConstructionType<Policy> names the number type a policy constructs in.
+// ConstructionType<Policy> (exact_number.hpp) names the number type a policy constructs in.
 
 #include <cmath>
 

@@ -1,0 +1,180 @@
+#pragma once
+// FT-generic pieces of the potential and its demarcation points (see potential.hpp and
+// demarcation.hpp for the method). Used by kernel/src/potential.cpp in double and by the
+// contact layer in double or GMP rationals.
+//
+// Along the segment p(t) = a + t (b - a), the distance from p(t) to the line of edge k,
+// e_k = v_{k+1} - v_k, is linear in t:
+//   d_k(t) = alpha_k + t beta_k,  alpha_k = e_k x (a - v_k) / |e_k|,  beta_k = e_k x (b - a) / |e_k|
+// (positive inside a CCW polygon), and d_exit(t) = min_k d_k(t), their lower envelope.
+
+#include <algorithm>
+#include <vector>
+
+#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/kernel/detail/constructions.hpp"
+
+namespace rockcontact::kernel::detail {
+
+template <class FT>
+struct LinearPieces {
+  std::vector<FT> alpha;  // m
+  std::vector<FT> beta;   // m per unit of t
+
+  FT at(const FT& t) const {
+    FT best = alpha[0] + t * beta[0];
+    for (std::size_t k = 1; k < alpha.size(); ++k) {
+      const FT d = alpha[k] + t * beta[k];
+      if (d < best) best = d;
+    }
+    return best;
+  }
+};
+
+template <class FT>
+FT edge_length(const ConvexPolygon& poly, std::size_t k) {
+  using Ops = NumberOps<FT>;
+  const Point2 &p = poly[k], &q = poly[poly.next(k)];
+  const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
+  return Ops::sqrt(ex * ex + ey * ey);
+}
+
+template <class FT>
+void edge_distance_functions(const ConvexPolygon& poly, const PointT<FT>& a, const PointT<FT>& b,
+                             LinearPieces<FT>& out) {
+  using Ops = NumberOps<FT>;
+  out.alpha.resize(poly.size());
+  out.beta.resize(poly.size());
+  const FT dx = b.x - a.x, dy = b.y - a.y;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Point2 &p = poly[k], &q = poly[poly.next(k)];
+    const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
+    const FT len = Ops::sqrt(ex * ex + ey * ey);
+    out.alpha[k] = cross(ex, ey, FT(a.x - Ops::from(p.x)), FT(a.y - Ops::from(p.y))) / len;
+    out.beta[k] = cross(ex, ey, dx, dy) / len;
+  }
+}
+
+// Breakpoints of min_k (alpha_k + t beta_k) for 0 < t < 1, ascending: walk the envelope from
+// t = 0; from the active line, the next one is the earliest later crossing among lines of
+// smaller slope. Each step lowers the active slope, so there are at most n - 1 steps.
+template <class FT>
+void envelope_breakpoints(const LinearPieces<FT>& f, std::vector<FT>& out) {
+  const std::size_t n = f.alpha.size();
+  std::size_t active = 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if (f.alpha[k] < f.alpha[active] ||
+        (f.alpha[k] == f.alpha[active] && f.beta[k] < f.beta[active])) {
+      active = k;
+    }
+  }
+  FT t(0);
+  for (;;) {
+    std::size_t next = n;
+    FT next_t(1);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!(f.beta[k] < f.beta[active])) continue;
+      const FT tk = (f.alpha[k] - f.alpha[active]) / (f.beta[active] - f.beta[k]);
+      if (tk > t && (tk < next_t || (next < n && tk == next_t && f.beta[k] < f.beta[next]))) {
+        next = k;
+        next_t = tk;
+      }
+    }
+    if (next == n) return;
+    out.push_back(next_t);
+    active = next;
+    t = next_t;
+  }
+}
+
+// Inward unit normal of edge k (v_k -> v_{k+1}) of a CCW polygon.
+template <class FT>
+PointT<FT> inward_normal(const ConvexPolygon& poly, std::size_t k) {
+  using Ops = NumberOps<FT>;
+  const Point2 &p = poly[k], &q = poly[poly.next(k)];
+  const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
+  const FT len = Ops::sqrt(ex * ex + ey * ey);
+  return {FT(-ey / len), FT(ex / len)};
+}
+
+// A ray o + s r, 0 <= s <= s_max (s_max < 0: unbounded).
+template <class FT>
+struct Ray {
+  PointT<FT> origin;
+  PointT<FT> direction;
+  FT s_max;
+};
+
+// Parameter t in (0, 1) where segment a + t d crosses the ray, if it does (transversally).
+template <class FT>
+void add_crossing(const PointT<FT>& a, const PointT<FT>& d, const Ray<FT>& ray, std::vector<FT>& out) {
+  const FT denom = cross(d.x, d.y, ray.direction.x, ray.direction.y);
+  if (denom == FT(0)) return;
+  const FT wx = ray.origin.x - a.x, wy = ray.origin.y - a.y;
+  const FT t = cross(wx, wy, ray.direction.x, ray.direction.y) / denom;
+  const FT s = cross(wx, wy, d.x, d.y) / denom;
+  if (t > FT(0) && t < FT(1) && s >= FT(0) && (ray.s_max < FT(0) || s <= ray.s_max)) out.push_back(t);
+}
+
+// The paper's demarcation points (seed 000 §3.2.3): the centre of the segment and its
+// crossings with the bisector ray of every node; an edge shorter than small_edge gets a
+// virtual node where the bisector rays of its two end nodes meet: those two rays stop there
+// and one ray continues, bisecting the lines of the two neighbouring edges.
+template <class FT>
+void paper_breakpoints(const ConvexPolygon& poly, const PointT<FT>& a, const PointT<FT>& b,
+                       double small_edge, std::vector<FT>& out) {
+  const std::size_t n = poly.size();
+  const PointT<FT> d{FT(b.x - a.x), FT(b.y - a.y)};
+  out.push_back(FT(1) / FT(2));
+  std::vector<PointT<FT>> normal(n);
+  std::vector<bool> short_edge(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    normal[k] = inward_normal<FT>(poly, k);
+    short_edge[k] = edge_length<FT>(poly, k) < NumberOps<FT>::from(small_edge);
+  }
+  const auto bisector = [&](std::size_t k) {  // at node k, between edges k-1 and k
+    const PointT<FT>& m = normal[poly.prev(k)];
+    return PointT<FT>{FT(m.x + normal[k].x), FT(m.y + normal[k].y)};
+  };
+  // Parameter along node k's bisector where it meets node (k+1)'s: the virtual node of edge k.
+  const auto virtual_node_s = [&](std::size_t k) {
+    const PointT<FT> r0 = bisector(k), r1 = bisector(poly.next(k));
+    const PointT<FT> p0 = lift<FT>(poly[k]), p1 = lift<FT>(poly[poly.next(k)]);
+    return FT(cross(FT(p1.x - p0.x), FT(p1.y - p0.y), r1.x, r1.y) / cross(r0.x, r0.y, r1.x, r1.y));
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    Ray<FT> ray{lift<FT>(poly[k]), bisector(k), FT(-1)};
+    if (short_edge[k]) {
+      ray.s_max = virtual_node_s(k);
+    } else if (short_edge[poly.prev(k)]) {
+      // The virtual node of edge k-1 lies on this ray where node k-1's bisector meets it.
+      const std::size_t j = poly.prev(k);
+      const PointT<FT> r0 = bisector(j);
+      const FT s0 = virtual_node_s(j);
+      const PointT<FT> w{FT(lift<FT>(poly[j]).x + s0 * r0.x), FT(lift<FT>(poly[j]).y + s0 * r0.y)};
+      const PointT<FT>& r = ray.direction;
+      ray.s_max = r.x * r.x >= r.y * r.y ? FT((w.x - ray.origin.x) / r.x) : FT((w.y - ray.origin.y) / r.y);
+    }
+    add_crossing(a, d, ray, out);
+    if (short_edge[k]) {
+      const PointT<FT> r0 = bisector(k);
+      const FT s = virtual_node_s(k);
+      const PointT<FT>& before = normal[poly.prev(k)];
+      const PointT<FT>& after = normal[poly.next(k)];
+      const Ray<FT> from_virtual{{FT(ray.origin.x + s * r0.x), FT(ray.origin.y + s * r0.y)},
+                                 {FT(before.x + after.x), FT(before.y + after.y)},
+                                 FT(-1)};
+      add_crossing(a, d, from_virtual, out);
+    }
+  }
+}
+
+// Sorts and removes duplicates and anything outside (0, 1).
+template <class FT>
+void normalise_parameters(std::vector<FT>& t) {
+  std::erase_if(t, [](const FT& x) { return !(x > FT(0) && x < FT(1)); });
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+}
+
+}  // namespace rockcontact::kernel::detail
