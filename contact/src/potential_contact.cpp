@@ -1,5 +1,6 @@
 #include "rockcontact/contact/potential_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -44,13 +45,6 @@ Pt<FT> vertex_point(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpVe
   return kd::construct_crossing<FT>(cp[v.cp], cp[cp.next(v.cp)], tp[v.tp], tp[tp.next(v.tp)]);
 }
 
-// Per-edge scratch in the construction type.
-template <class FT>
-struct EdgeScratch {
-  kd::LinearPieces<FT> cp_distance, tp_distance;
-  std::vector<FT> t;
-};
-
 // The demarcation parameters of `poly` on segment p -> q, appended to t.
 template <class FT>
 void add_demarcation(const ConvexPolygon& poly, const Pt<FT>& p, const Pt<FT>& q,
@@ -78,7 +72,7 @@ struct EdgeIntegral {
 template <class FT>
 EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpEdge& edge,
                                 const Pt<FT>& p, const Pt<FT>& q, const Pt<FT>& c,
-                                const PotentialContactParams& params, EdgeScratch<FT>& s) {
+                                const PotentialContactParams& params, kd::ForceScratch<FT>& s) {
   // On its own boundary a polygon's potential is zero (seed 000 §3.2.3 steps 2-3).
   const bool cp_zero = edge.on == IpEdge::On::cp_edge;
   const bool tp_zero = edge.on == IpEdge::On::tp_edge;
@@ -125,18 +119,18 @@ EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp
 // Force, area and contact point from the symbolic IP, all in FT, each rounded once.
 template <class FT>
 void integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
-                     const PotentialContactParams& params, PairResult& out) {
+                     const PotentialContactParams& params, kd::ForceScratch<FT>& scratch,
+                     PairResult& out) {
   using Ops = kd::NumberOps<FT>;
   const auto& ip = out.ip_features;
-  std::vector<Pt<FT>> v;
-  v.reserve(ip.vertices.size());
+  std::vector<Pt<FT>>& v = scratch.vertices;
+  v.clear();
   for (const IpVertex& iv : ip.vertices) v.push_back(vertex_point<FT>(cp, tp, iv));
   const kd::AreaCentroid<FT> ac = kd::area_centroid<FT>(v);
   const Pt<FT>& c = ac.centroid;
 
   // f = (kn/H) Σ_edges G_e (dy, -dx): (dy, -dx) = n L is the outward normal times the length
   // of a CCW edge (eq. 11, 18). The moment about c is Σ m_e x (dy, -dx) (eq. 17, 20).
-  EdgeScratch<FT> scratch;
   FT fx(0), fy(0), moment(0), magnitude(0);
   for (std::size_t k = 0; k < v.size(); ++k) {
     const Pt<FT>& p = v[k];
@@ -185,7 +179,14 @@ void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
   out.ip_features.edges.clear();
   if (out.status == Overlap::overlap) {
     kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
-    if (!out.ip_features.empty()) integrate_force<kd::ConstructionType<Policy>>(cp, tp, params, out);
+    if (!out.ip_features.empty()) {
+      if constexpr (Policy::kind == kernel::PolicyKind::exact) {
+        kd::ForceScratch<mpq_class> scratch;
+        integrate_force(cp, tp, params, scratch, out);
+      } else {
+        integrate_force(cp, tp, params, workspace.force, out);
+      }
+    }
   }
   const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
   out.predicates = spent.total_calls();

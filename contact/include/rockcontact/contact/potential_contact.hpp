@@ -31,6 +31,7 @@
 
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/demarcation.hpp"
+#include "rockcontact/kernel/detail/potential_impl.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
 #include "rockcontact/kernel/intersection_polygon.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
@@ -69,8 +70,7 @@ struct PairResult {
 // Scratch space reused across pairs: no allocation once it has grown to the largest pair.
 struct PairWorkspace {
   kernel::ClipWorkspace clip;
-  std::vector<double> parameters;
-  std::vector<double> envelope;
+  kernel::detail::ForceScratch<double> force;
 };
 
 // Throws std::invalid_argument when params are not finite and positive (kn, H).

@@ -169,6 +169,15 @@ void paper_breakpoints(const ConvexPolygon& poly, const PointT<FT>& a, const Poi
   }
 }
 
+// Scratch space of the force integration (contact layer), reused across pairs so that the
+// double path allocates nothing in steady state.
+template <class FT>
+struct ForceScratch {
+  std::vector<PointT<FT>> vertices;
+  LinearPieces<FT> cp_distance, tp_distance;
+  std::vector<FT> t;
+};
+
 // Sorts and removes duplicates and anything outside (0, 1).
 template <class FT>
 void normalise_parameters(std::vector<FT>& t) {
