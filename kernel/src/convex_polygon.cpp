@@ -57,11 +57,6 @@ void check_distinct(const std::string& name, std::span<const Point2> v) {
   }
 }
 
-// Upper half of the direction circle: angle in [0, pi). Exact: compares input doubles only.
-bool upper_half(const Point2& from, const Point2& to) {
-  return to.y > from.y || (to.y == from.y && to.x > from.x);
-}
-
 }  // namespace
 
 ConvexPolygon ConvexPolygon::make(std::string name, std::vector<Point2> vertices, VertexOrder order) {

@@ -9,11 +9,6 @@
 namespace rockcontact::kernel {
 namespace {
 
-// Direction (to - from) lies in the upper half-circle, angle in [0, pi). Exact.
-bool upper_half(const Point2& from, const Point2& to) {
-  return to.y > from.y || (to.y == from.y && to.x > from.x);
-}
-
 // Lowest vertex, leftmost among the lowest: its outgoing edge has angle in [0, pi).
 std::size_t lowest_leftmost(const ConvexPolygon& p) {
   std::size_t best = 0;

@@ -92,6 +92,13 @@ Sign cross_sign(const Point2& p0, const Point2& p1, const Point2& q0, const Poin
   }
 }
 
+// Does the direction to - from lie in the upper half-circle, angle in [0, pi)? Exact under
+// every policy: it compares input doubles only (a difference of doubles has the sign of their
+// comparison). Used to sort edge directions by angle.
+inline bool upper_half(const Point2& from, const Point2& to) {
+  return to.y > from.y || (to.y == from.y && to.x > from.x);
+}
+
 template <NumberPolicy Policy>
 Sign orientation(const Point2& p, const Point2& q, const Point2& r) {
   return cross_sign<Policy>(p, q, p, r);
