@@ -18,6 +18,7 @@
 // goes straight to stage 2.
 
 #include <cmath>
+#include <optional>
 
 #include "rockcontact/kernel/detail/error_bounded.hpp"
 #include "rockcontact/kernel/detail/predicate_formulas.hpp"
@@ -66,8 +67,62 @@ inline Sign cross_sign_filtered(const Point2& p0, const Point2& p1, const Point2
   return cross_sign_exact(p0, p1, q0, q1);
 }
 
+// Semi-static filter for crossing_side (stage 1a): the formula D A + N B evaluated in double
+// alongside its magnitude T = D̄ Ā + N̄ B̄, where X̄ = |x1 y2| + |x2 y1| is the magnitude of a
+// cross product of rounded differences. Derivation (u = 2^-53): by Shewchuk's bound each rounded
+// cross product X~ satisfies |X~ - X| <= e X̄ with e = (3 + 16u) u, and |X~| <= (1 + u) X̄. Then
+//   |fl(D~ A~) - D A| <= |D~| |A~ - A| + |A| |D~ - D| + u |D~ A~| <= (7u + O(u²)) D̄ Ā,
+// likewise for N B, and the final sum adds u (D̄ Ā + N̄ B̄): the error is at most
+// (8u + O(u²)) T. T itself is computed with a relative error of a few u, so 9u T (one spare u
+// covers every second-order term) bounds the error. Underflow: if D̄, N̄, Ā, B̄ are all at least
+// 2^-400, the at most 2^-1074 absolute error of a subnormal product is far below u T; smaller
+// magnitudes, and overflow, go to the running-error filter (stage 1b), which handles both.
+inline constexpr double crossing_side_error_factor = 9.0 * unit_roundoff;
+inline constexpr double crossing_side_min_magnitude = 0x1p-400;
+
+struct Magnitude {
+  double value = 0.0;
+  double magnitude = 0.0;  // the sum of |terms| of the cross product or product that made value
+
+  static Magnitude difference(double a, double b) {
+    const double v = a - b;
+    return {v, std::fabs(v)};
+  }
+  friend Magnitude operator*(Magnitude x, Magnitude y) {
+    return {x.value * y.value, x.magnitude * y.magnitude};
+  }
+  friend Magnitude operator+(Magnitude x, Magnitude y) {
+    return {x.value + y.value, x.magnitude + y.magnitude};
+  }
+  friend Magnitude operator-(Magnitude x, Magnitude y) {
+    return {x.value - y.value, x.magnitude + y.magnitude};
+  }
+};
+
+inline std::optional<Sign> crossing_side_semi_static(const Line& a, const Line& b, const Line& c) {
+  const auto diff = [](double x, double y) { return Magnitude::difference(x, y); };
+  const Magnitude d1x = diff(a.q.x, a.p.x), d1y = diff(a.q.y, a.p.y);
+  const Magnitude d2x = diff(b.q.x, b.p.x), d2y = diff(b.q.y, b.p.y);
+  const Magnitude d3x = diff(c.q.x, c.p.x), d3y = diff(c.q.y, c.p.y);
+  const Magnitude wx = diff(b.p.x, a.p.x), wy = diff(b.p.y, a.p.y);
+  const Magnitude rx = diff(a.p.x, c.p.x), ry = diff(a.p.y, c.p.y);
+  const Magnitude D = d1x * d2y - d1y * d2x;
+  const Magnitude N = wx * d2y - wy * d2x;
+  const Magnitude A = d3x * ry - d3y * rx;
+  const Magnitude B = d3x * d1y - d3y * d1x;
+  const double smallest = std::fmin(std::fmin(D.magnitude, N.magnitude), std::fmin(A.magnitude, B.magnitude));
+  if (!(smallest >= crossing_side_min_magnitude)) return std::nullopt;
+  const Magnitude value = D * A + N * B;
+  const double bound = crossing_side_error_factor * value.magnitude;
+  if (!std::isfinite(bound)) return std::nullopt;
+  if (value.value > bound) return Sign::positive;
+  if (-value.value > bound) return Sign::negative;
+  return std::nullopt;
+}
+
 inline Sign crossing_side_value_sign_filtered(const Line& a, const Line& b, const Line& c) {
   count_call(PredicateKind::crossing_side);
+  if (const auto sign = crossing_side_semi_static(a, b, c)) return *sign;
   const ErrorBounded value =
       crossing_side_formula<ErrorBounded>(a, b, c, [](double x, double y) {
         return ErrorBounded::difference(x, y);

@@ -8,7 +8,9 @@
 
 #include <gmpxx.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 
 #include "rockcontact/kernel/detail/number_ops.hpp"
@@ -19,7 +21,20 @@ namespace rockcontact::kernel::detail {
 template <>
 struct NumberOps<mpq_class> {
   static mpq_class from(double x) { return mpq_class(x); }
-  static double to_double(const mpq_class& x) { return x.get_d(); }
+  // Round to nearest, ties to even. mpq_get_d truncates toward zero, so the nearest double
+  // is either its answer or the next double away from zero; the exact errors decide.
+  static double to_double(const mpq_class& x) {
+    const double truncated = x.get_d();
+    if (sgn(x) == 0 || !std::isfinite(truncated)) return truncated;
+    const double away = std::nextafter(truncated, sgn(x) > 0 ? HUGE_VAL : -HUGE_VAL);
+    if (!std::isfinite(away)) return truncated;
+    const mpq_class error_truncated = ::abs(x - mpq_class(truncated));
+    const mpq_class error_away = ::abs(x - mpq_class(away));
+    const int c = cmp(error_away, error_truncated);
+    if (c < 0) return away;
+    if (c == 0 && (std::bit_cast<std::uint64_t>(truncated) & 1u) != 0) return away;
+    return truncated;
+  }
   static mpq_class abs(const mpq_class& x) { return ::abs(x); }
   static mpq_class sqrt(const mpq_class& x) {
     if (sgn(x) <= 0) return mpq_class(0);
