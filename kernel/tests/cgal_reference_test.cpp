@@ -301,8 +301,9 @@ class Families {
       add("vertex_on_edge_pushed_out_2^-40_" + tag, a, push(0x1p-40, {0, 0}));
       add("vertex_on_edge_pushed_in_2^-25_offset_2^20_" + tag, a_far, push(-0x1p-25, {0x1p20, -0x1p20}));
       add("vertex_on_edge_pushed_out_2^-25_offset_2^20_" + tag, a_far, push(0x1p-25, {0x1p20, -0x1p20}));
-      // Edge of B along edge k of A, overlapping part of it (possibly past its ends).
-      const double s0 = integer(-2, 4) / 8.0, s1 = s0 + integer(1, 6) / 8.0;
+      // Edge of B along edge k of A from s0 to s1 (in units of d), sharing a piece of positive
+      // length with it, possibly running past its ends.
+      const double s0 = integer(-2, 6) / 8.0, s1 = std::max(s0, 0.0) + integer(1, 4) / 8.0;
       const Point2 T0 = at(P, d, s0), T1 = at(P, d, s1);
       add_dyadic("touch_edge_on_edge_" + tag, a, {T1, T0, at(at(T0, d, 0.5 * (s1 - s0)), n, 0.5)});
       // Vertex of B on vertex P of A, B inside P's outer normal cone (spanned by the outward

@@ -271,8 +271,44 @@ BOOST_AUTO_TEST_CASE(exact_demarcation_matches_dense_sampling) {
 // bisector rays (unbounded, plus the segment centre) contain every exact breakpoint; the extra
 // points only split linear pieces. With an edge shorter than small_edge the virtual node of a
 // triangle is its incentre, and the continuing ray lies on the opposite vertex's bisector.
+//
+// Tolerance: both modes construct in double. The exact breakpoint (envelope of two distance
+// functions) is accurate to ~1e-13 here; the paper point is the crossing with a ray whose
+// direction r = n_i + n_j is the sum of two rounded unit normals (error ~4u), so its angle errs
+// by ~4u / |r|, and |r| = 2 sin(angle / 2) is small at a sharp vertex. That angle, times the
+// distance from the vertex to the crossing, over the sine of the angle between the segment and
+// the ray, is the displacement along the segment; divided by |b - a| it is δt. The test allows
+// 4 δt + 1e-12: sliver triangles crossed at a grazing angle need ~1e-8, a missed kink is O(1).
+namespace {
+
+// The vertex whose bisector carries the kink at t: the one shared by the two edges nearest to
+// the point (in a triangle any two edges share a vertex), and the allowed error of t.
+double paper_tolerance(const ConvexPolygon& tri, const Point2& a, const Point2& b, double t) {
+  using LD = long double;
+  const LD x = a.x + t * (LD(b.x) - a.x), y = a.y + t * (LD(b.y) - a.y);
+  std::array<LD, 3> d{};
+  std::array<std::array<LD, 2>, 3> normal{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Point2 &p = tri[k], &q = tri[tri.next(k)];
+    const LD ex = LD(q.x) - p.x, ey = LD(q.y) - p.y, len = std::sqrt(ex * ex + ey * ey);
+    d[k] = (ex * (y - p.y) - ey * (x - p.x)) / len;
+    normal[k] = {-ey / len, ex / len};
+  }
+  const std::size_t far = static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
+  const std::size_t i = tri.next(far), j = tri.next(i);  // the two nearest edges; vertex j joins them
+  const LD rx = normal[i][0] + normal[j][0], ry = normal[i][1] + normal[j][1], r = std::hypot(rx, ry);
+  const LD sx = LD(b.x) - a.x, sy = LD(b.y) - a.y, s = std::hypot(sx, sy);
+  const LD sine = std::fabs(sx * ry - sy * rx) / (s * r);
+  const LD lever = std::hypot(x - tri[j].x, y - tri[j].y);
+  const LD dt = 4 * u / r * lever / (sine * s);
+  return static_cast<double>(4 * dt) + 1e-12;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(paper_demarcation_on_triangles_contains_exact) {
   std::mt19937_64 rng(seed_for("paper_demarcation_on_triangles_contains_exact", 20240624));
+  double loosest = 0.0;
   for (int trial = 0; trial < 200; ++trial) {
     const ConvexPolygon tri = random_convex(rng, 3, 0.0, 0.0);
     const Point2 a = random_inside(rng, tri), b = random_inside(rng, tri);
@@ -286,13 +322,14 @@ BOOST_AUTO_TEST_CASE(paper_demarcation_on_triangles_contains_exact) {
       BOOST_TEST_INFO("trial " << trial << " small_edge " << small_edge);
       BOOST_TEST(contains(paper, 0.5, 0.0));
       for (double t : exact) {
-        // Both are double constructions of the same crossing: a few ulps apart, unless the
-        // segment meets the bisector at a grazing angle; 1e-9 is far below any real miss.
-        BOOST_TEST_INFO("trial " << trial << " small_edge " << small_edge << " exact t = " << t);
-        BOOST_TEST(contains(paper, t, 1e-9));
+        const double tol = paper_tolerance(tri, a, b, t);
+        loosest = std::max(loosest, tol);
+        BOOST_TEST_INFO("trial " << trial << " small_edge " << small_edge << " exact t = " << t << " tol " << tol);
+        BOOST_TEST(contains(paper, t, tol));
       }
     }
   }
+  BOOST_TEST_MESSAGE("paper vs exact on triangles: loosest tolerance used " << loosest);
 }
 
 // The 2 x 1 rectangle [0,2] x [0,1]. Its medial axis: bisectors from the corners to (0.5, 0.5)
