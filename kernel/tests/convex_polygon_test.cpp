@@ -135,8 +135,9 @@ BOOST_AUTO_TEST_CASE(each_reason_names_polygon_and_vertex) {
 }
 
 // A pentagram turns left at every vertex but its boundary winds twice: not convex. Which vertex
-// is blamed is a choice of the implementation; it must be one of the five and be named.
-BOOST_AUTO_TEST_CASE(pentagram_is_not_convex) {
+// is blamed is a choice of the implementation; it must be one of the five and be named. Same
+// for a bow-tie and a doubly wound hexagon.
+BOOST_AUTO_TEST_CASE(self_intersecting_polygons_are_not_convex) {
   std::vector<Point2> pentagon;
   for (int k = 0; k < 5; ++k) {
     const double angle = 1.5707963267948966 + k * 1.2566370614359172;
@@ -154,7 +155,13 @@ BOOST_AUTO_TEST_CASE(pentagram_is_not_convex) {
     BOOST_TEST(message.find("pentagram") != std::string::npos);
     BOOST_TEST(message.find("vertex " + std::to_string(e->vertex())) != std::string::npos);
   }
-  // Its reverse (all right turns) is reported as not convex as well when normalised.
+  // A bow-tie turns right twice and left twice: not convex, whichever vertex is blamed.
+  const auto bowtie = error_of("bowtie", {{0, 0}, {1, 1}, {1, 0}, {0, 1}});
+  BOOST_TEST_REQUIRE(bowtie.has_value());
+  BOOST_TEST((bowtie->reason() == Reason::not_convex));
+  BOOST_TEST(bowtie->vertex() >= 0);
+  BOOST_TEST(bowtie->vertex() < 4);
+  // The reversed pentagram (all right turns) is reported as not convex as well when normalised.
   const std::vector<Point2> reversed_star(star.rbegin(), star.rend());
   const auto e = error_of("pentagram_cw", reversed_star, rk::VertexOrder::normalise);
   BOOST_TEST_REQUIRE(e.has_value());

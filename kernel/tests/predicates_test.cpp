@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <functional>
 #include <map>
 #include <ostream>
 #include <random>
@@ -117,8 +116,9 @@ class Generator {
     for (int k = integer(-2, 2); k != 0; k += k > 0 ? -1 : 1) r.y = std::nextafter(r.y, k > 0 ? HUGE_VAL : -HUGE_VAL);
     return r;
   }
-  // Two points about 1e6 m from the origin on opposite sides, and a rounded point of their
-  // line near the origin: the classic case where double orientation answers at random.
+  // Two points about 1e6 m from the origin on nearly opposite sides, and a rounded point of
+  // their line between them (a few hundred metres from the origin): the classic case where
+  // double orientation answers at random.
   std::array<Point2, 3> far_line() {
     const double theta = uniform(0.0, 6.283185307179586);
     const double r0 = uniform(0.5e6, 1.5e6), r1 = uniform(0.5e6, 1.5e6);
@@ -169,12 +169,14 @@ std::map<std::string, std::vector<CrossInput>> cross_families(Generator& g, int 
   for (int i = 0; i < count; ++i) {
     const Point2 p0 = g.point(1.0), p1 = g.point(1.0), q0 = g.point(1.0);
     f["random"].push_back({p0, p1, q0, g.point(1.0)});
-    // q1 - q0 nearly parallel to p1 - p0 (a derived point b_j - a_i against an edge).
+    // q1 - q0 nearly parallel to p1 - p0 (a derived point b_j - a_i against an edge), off by
+    // k 2^-45 in each coordinate.
     const double s = g.uniform(-2.0, 2.0);
     const Point2 q1{q0.x + s * (p1.x - p0.x) + g.integer(-2, 2) * 0x1p-45,
                     q0.y + s * (p1.y - p0.y) + g.integer(-2, 2) * 0x1p-45};
     f["near_parallel_2^-45"].push_back({p0, p1, q0, q1});
-    // Long edge between far points against a short nearly parallel one near the origin.
+    // An edge between points ~1e6 m apart against a nearly parallel one joining rounded points
+    // of (almost) the same line.
     const auto far = g.far_line();
     const Point2 r = g.near_line_ulps(far[0], far[2]);
     f["near_parallel_far"].push_back({far[0], far[1], far[2], r});
@@ -237,8 +239,8 @@ std::map<std::string, std::vector<SideInput>> crossing_side_families(Generator& 
     const Line a{g.point(1.0), g.point(1.0)}, b{g.point(1.0), g.point(1.0)};
     if (parallel(a, b)) continue;
     f["random"].push_back({a, b, Line{g.point(1.0), g.point(1.0)}});
-    // c through the crossing rounded to the nearest double, and through that point moved by a
-    // few ulps: the side is decided by the rounding alone.
+    // c through the crossing rounded to the nearest double (the side is decided by the
+    // rounding alone), and through that point moved by k 2^-45, k in [-2, 2].
     const ExactPoint x = exact_crossing(a, b);
     const Point2 xr{nearest(x.x), nearest(x.y)};
     const Point2 far = g.point(1.0);
@@ -266,7 +268,7 @@ std::map<std::string, std::vector<SideInput>> crossing_side_families(Generator& 
 }
 
 template <class Policy>
-Sign all_policies_side(const SideInput& s) {
+Sign side_under(const SideInput& s) {
   return rk::crossing_side<Policy>(s.a, s.b, s.c);
 }
 
@@ -396,9 +398,9 @@ BOOST_AUTO_TEST_CASE(crossing_side_matches_exact_reference) {
     int wrong_filtered = 0, wrong_exact = 0, wrong_float = 0;
     for (const SideInput& s : inputs) {
       const Sign expected = exact_crossing_side(s.a, s.b, s.c);
-      wrong_filtered += all_policies_side<rk::Filtered>(s) != expected;
-      wrong_exact += all_policies_side<rk::Exact>(s) != expected;
-      wrong_float += all_policies_side<rk::Float>(s) != expected;
+      wrong_filtered += side_under<rk::Filtered>(s) != expected;
+      wrong_exact += side_under<rk::Exact>(s) != expected;
+      wrong_float += side_under<rk::Float>(s) != expected;
     }
     BOOST_TEST_INFO("family " << name);
     BOOST_TEST(wrong_filtered == 0);
