@@ -38,14 +38,19 @@ Sign crossing_side_value_sign_exact(const Line& a, const Line& b, const Line& c)
 
 inline constexpr auto double_diff = [](double a, double b) { return a - b; };
 
-// Static-filter constant for the cross product, Shewchuk's ccwerrboundA:
-//   |det - fl(det)| <= (3u + 16u^2) (|ux vy| + |uy vx|)
-// where ux = fl(p1.x - p0.x), ... are the rounded differences. Derivation (u = 2^-53): each
-// difference carries a relative error <= u, each product adds u, the final subtraction adds u;
-// collecting first-order terms gives 3u per product magnitude, and the (1 + u)^k cross terms
-// are bounded by 16u^2 (Shewchuk 1997, section 4.2). The bound ignores underflow, so the filter
-// adds the absolute term 2^-1070, which exceeds the at most three subnormal roundings
-// (2^-1075 each) of the products and subtraction. tests/predicates_test.cpp re-derives the bound.
+// Static-filter constant for the cross product, Shewchuk's ccwerrboundA. With ux = fl(p1.x -
+// p0.x), ..., left = fl(ux vy), right = fl(uy vx) and det* the exact cross product,
+//   |det* - (left - right)| <= (3u + 16u²) (|left| + |right|)
+// for the exact difference left - right of the rounded products. Derivation (u = 2^-53): each
+// difference carries a relative error <= u, each product adds u; collecting first-order terms
+// gives 3u per product magnitude (one u of which covers the bound's own rounding), the
+// (1 + u)^k cross terms are below 16u². The computed det = fl(left - right) is not covered by
+// the bound itself (its rounding adds up to u |det|), but rounding is monotone and the bound
+// is a double: fl(left - right) > bound implies left - right > bound, hence det* > 0, and
+// likewise for the negative side, so comparing det with the bound decides the sign correctly.
+// The bound ignores underflow, so the filter adds the absolute term 2^-1070, which exceeds the
+// at most two subnormal roundings (2^-1075 each) of the products. tests/predicates_test.cpp
+// re-derives the bound in GMP.
 inline constexpr double cross_error_factor = (3.0 + 16.0 * unit_roundoff) * unit_roundoff;
 inline constexpr double cross_underflow_term = 0x1p-1070;
 
