@@ -43,7 +43,7 @@ inline constexpr auto double_diff = [](double a, double b) { return a - b; };
 //   |det* - (left - right)| <= (3u + 16u²) (|left| + |right|)
 // for the exact difference left - right of the rounded products. Derivation (u = 2^-53): each
 // difference carries a relative error <= u, each product adds u; collecting first-order terms
-// gives 3u per product magnitude (one u of which covers the bound's own rounding), the
+// gives 3u per product magnitude (Shewchuk 1997, section 4.2), the
 // (1 + u)^k cross terms are below 16u². The computed det = fl(left - right) is not covered by
 // the bound itself (its rounding adds up to u |det|), but rounding is monotone and the bound
 // is a double: fl(left - right) > bound implies left - right > bound, hence det* > 0, and
