@@ -1,0 +1,151 @@
+// Pair-level micro-benchmarks: the cost of one pair of blocks under each number policy.
+//
+//   classify/<policy>/<pool>      kernel::classify_overlap (the verdict alone)
+//   intersection/<policy>/<pool>  kernel::compute_intersection_polygon + construct_points
+//   evaluate/<policy>/<pool>      contact::evaluate_pair (verdict, IP, force, contact point)
+//
+// Pools of 512 pairs (fixed seed, built before timing): `random` is the random family of
+// robustness_tests/pair_generators.hpp (overlap, touch, separate); `general` its pairs in general
+// position (touching pairs left out); `adversarial` cycles through the nine other families
+// (short edges, 5° and 0.5° wedges, near-parallel edges, exact vertex-on-edge, vertex-on-vertex
+// and edge-on-edge contacts, 1e6 m offsets, lattice touches).
+//
+// One benchmark iteration is one pass over the whole pool, so every policy is timed on the same
+// pairs (the Exact force costs milliseconds per pair; timing a prefix of the pool would bias
+// it). Counters:
+//   per_pair        seconds per pair (wall clock of the passes / pairs; 53.2n = 53.2 ns)
+//   fallback_rate   exact re-evaluations / filtered predicate calls (predicate_counters());
+//                   nonzero only under Filtered (Float never falls back, Exact always is exact)
+//   predicates      predicate calls per pair
+// Workspaces are reused and warmed on the pool before timing, so the Float and Filtered paths
+// allocate nothing in the timed loop; the Exact path allocates its GMP numbers.
+
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pair_generators.hpp"
+#include "rockcontact/contact/potential_contact.hpp"
+#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/kernel/entrance_block.hpp"
+#include "rockcontact/kernel/intersection_polygon.hpp"
+#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/kernel/predicate_stats.hpp"
+
+namespace {
+
+namespace rb = rockcontact::robustness;
+namespace rk = rockcontact::kernel;
+namespace rc = rockcontact::contact;
+
+constexpr std::uint64_t seed = 0x5eed'2024'0611ull;
+constexpr std::size_t pool_size = 512;
+
+struct Pool {
+  std::string name;
+  std::vector<rk::ConvexPolygon> cp;
+  std::vector<rk::ConvexPolygon> tp;
+};
+
+enum class PoolKind { random, general, adversarial };
+
+// `general` keeps the random pairs in general position (exact verdict separate or overlap), so
+// the filter should certify every sign; `random` includes the touching pairs, each of which
+// needs one exact evaluation to confirm its zero.
+Pool make_pool(std::string name, PoolKind kind) {
+  Pool pool{std::move(name), {}, {}};
+  for (std::uint64_t index = 0; pool.cp.size() < pool_size; ++index) {
+    // The adversarial pool skips all_families[0], the random family.
+    const rb::Family family = kind == PoolKind::adversarial
+                                  ? rb::all_families[1 + index % (rb::all_families.size() - 1)]
+                                  : rb::Family::random;
+    const rb::PolygonPair pair = rb::generate_pair(family, seed, index);
+    rk::ConvexPolygon cp = rk::ConvexPolygon::make("cp", pair.cp);
+    rk::ConvexPolygon tp = rk::ConvexPolygon::make("tp", pair.tp);
+    if (kind == PoolKind::general && rk::classify_overlap<rk::Exact>(cp, tp) == rk::Overlap::touch) continue;
+    pool.cp.push_back(std::move(cp));
+    pool.tp.push_back(std::move(tp));
+  }
+  return pool;
+}
+
+// Times `one_pair(i)` over the whole pool per iteration, after one untimed warm-up pass.
+template <class OnePair>
+void run_passes(benchmark::State& state, OnePair&& one_pair) {
+  for (std::size_t i = 0; i < pool_size; ++i) one_pair(i);
+  const rk::PredicateCounters before = rk::predicate_counters();
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < pool_size; ++i) one_pair(i);
+    benchmark::ClobberMemory();
+  }
+  const rk::PredicateCounters spent = rk::predicate_counters() - before;
+  const double pairs = static_cast<double>(state.iterations()) * static_cast<double>(pool_size);
+  const double calls = static_cast<double>(spent.total_calls());
+  state.counters["per_pair"] =
+      benchmark::Counter(pairs, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["fallback_rate"] = calls > 0 ? static_cast<double>(spent.total_fallbacks()) / calls : 0.0;
+  state.counters["predicates"] = calls / pairs;
+}
+
+template <rk::NumberPolicy Policy>
+void classify(benchmark::State& state, const Pool& pool) {
+  run_passes(state, [&](std::size_t i) {
+    benchmark::DoNotOptimize(rk::classify_overlap<Policy>(pool.cp[i], pool.tp[i]));
+  });
+}
+
+template <rk::NumberPolicy Policy>
+void intersection(benchmark::State& state, const Pool& pool) {
+  rk::IntersectionPolygon ip;
+  rk::ClipWorkspace workspace;
+  std::vector<rk::Point2> points;
+  run_passes(state, [&](std::size_t i) {
+    rk::compute_intersection_polygon<Policy>(pool.cp[i], pool.tp[i], ip, workspace);
+    rk::construct_points<Policy>(pool.cp[i], pool.tp[i], ip, points);
+    benchmark::DoNotOptimize(points.data());
+  });
+}
+
+template <rk::NumberPolicy Policy>
+void evaluate(benchmark::State& state, const Pool& pool) {
+  const rc::PotentialContactParams params = rc::default_potential_contact_params();
+  rc::PairWorkspace workspace;
+  rc::PairResult result;
+  run_passes(state, [&](std::size_t i) {
+    rc::evaluate_pair<Policy>(pool.cp[i], pool.tp[i], params, workspace, result);
+    benchmark::DoNotOptimize(result.force);
+  });
+}
+
+template <rk::NumberPolicy Policy>
+void register_policy(const Pool& pool) {
+  const std::string suffix = std::string("/") + std::string(Policy::name) + "/" + pool.name;
+  const Pool* p = &pool;  // outlives the run (main's locals)
+  benchmark::RegisterBenchmark(("classify" + suffix).c_str(),
+                               [p](benchmark::State& state) { classify<Policy>(state, *p); });
+  benchmark::RegisterBenchmark(("intersection" + suffix).c_str(),
+                               [p](benchmark::State& state) { intersection<Policy>(state, *p); });
+  benchmark::RegisterBenchmark(("evaluate" + suffix).c_str(),
+                               [p](benchmark::State& state) { evaluate<Policy>(state, *p); });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  const Pool random = make_pool("random", PoolKind::random);
+  const Pool general = make_pool("general", PoolKind::general);
+  const Pool adversarial = make_pool("adversarial", PoolKind::adversarial);
+  for (const Pool* pool : {&random, &general, &adversarial}) {
+    register_policy<rk::Float>(*pool);
+    register_policy<rk::Filtered>(*pool);
+    register_policy<rk::Exact>(*pool);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

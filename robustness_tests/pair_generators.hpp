@@ -1,0 +1,110 @@
+#pragma once
+// Generators of nasty convex polygon pairs (cp, tp) for the robustness tests, the benchmarks and
+// fuzz targets: every pair is valid input for ConvexPolygon::make (CCW, strictly convex, no
+// repeated vertex), and the same (family, seed, index) gives the same pair on every platform.
+//
+// Validity is by construction: each polygon is the strict convex hull (convex_hull below) of
+// a generated point set, computed with the kernel's exact orientation predicate, so a rounded
+// coordinate can never leave a collinear or reflex vertex behind. The defining property of the
+// exact families (a vertex on an edge, a shared vertex, collinear edges, a lattice touch) is
+// checked with the same exact predicate; a violation is a generator bug (std::logic_error).
+//
+// Determinism: std::mt19937_64 (its output sequence is fixed by the C++ standard) with
+// distributions written here, and no transcendental function: directions come from the
+// rational parametrisation of the circle, ((1 - t^2), 2 t) / (1 + t^2), so only + - * / and
+// sqrt (correctly rounded by IEEE 754) and ldexp and round (exact) touch the numbers. Build
+// with -ffp-contract=off (the rockcontact_options target does) so that no fused multiply-add
+// changes a last bit.
+//
+// Families (lengths in metres, polygons about 1 m across):
+//   random            3-10 vertices on random ellipses; tp at a random distance (overlap or
+//                     separate), near contact (a tp corner placed at a cp corner, up to 0.2 m
+//                     aside, then moved +-2 cm along the direction of approach), or sharing a
+//                     cp vertex from outside (an exact touch).
+//   short_edges       random polygons with every corner chamfered by a 0.01 m edge, placed near
+//                     contact as above with a gap in [-2 cm, +0.5 cm].
+//   wedge_5deg        triangles or blunt-backed quadrilaterals with a 5° (0.5°) apex angle,
+//   wedge_0_5deg      tips poking into each other (mostly anti-parallel, some crossing).
+//   near_parallel     a tp edge facing a cp edge at an angle of 2e-12 to 1e-6 rad (log-uniform,
+//                     either sign), offset across the cp edge line by 0 or +-(1e-15 .. 2e-6).
+//   vertex_on_edge    cp edge A->B with B - A = 2^-q (a, b), (a, b) an integer direction
+//                     (half short: (1, 0), (2, 1), ..., q = 1..3; half long: a, b of 19-21
+//                     bits, q = 20); the tp vertex V = A + k / 2^m (B - A), m <= 20, exactly on
+//                     the edge. Variants: tp outside (touch), tp crossing the edge line at V,
+//                     and V moved by 2^-j times the edge's normal 2^-q (-b, a), 24 <= j <=
+//                     50 - q, inside (penetration) or outside (gap).
+//   vertex_on_vertex  tp has a vertex of cp; tp outside one of that vertex's edge lines
+//                     (touch) or turned into cp (overlap).
+//   edge_on_edge      a tp edge on the line of a cp edge (directions as in vertex_on_edge),
+//                     endpoints at k / 2^m along it; tp on the outside (touch along a segment
+//                     or at a point, or separate) or on the inside (overlap sharing a boundary
+//                     segment).
+//                     These three families put every point on the grid 2^-50 m below 4 m in
+//                     magnitude: the constructions above are exact sums, but the predicates'
+//                     products need not be exact in double.
+//   offset_1e6        a pair of one of the families above, snapped to the grid 2^-33 m and
+//                     translated by (1e6, -1e6) m. The translation is exact: every coordinate
+//                     is a multiple of 2^-33 and stays below 2^20 in magnitude, so each sum is a
+//                     multiple of 2^-33 below 2^20 = 2^53 * 2^-33, a double (checked with an
+//                     error-free sum). Snapping tilts near_parallel edges to at least ~1e-10
+//                     rad or exactly parallel.
+//   lattice_touch     vertices on the lattice (Z / 8)^2 within 1-2 m; half of the pairs put tp
+//                     in the closed outer half-plane of a cp edge through a lattice point of
+//                     that edge (an exact touch), half are two independent lattice polygons.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "rockcontact/kernel/point.hpp"
+
+namespace rockcontact::robustness {
+
+using kernel::Point2;
+using kernel::Vector2;
+
+enum class Family : std::uint8_t {
+  random,
+  short_edges,
+  wedge_5deg,
+  wedge_0_5deg,
+  near_parallel,
+  vertex_on_edge,
+  vertex_on_vertex,
+  edge_on_edge,
+  offset_1e6,
+  lattice_touch,
+};
+
+inline constexpr std::array<Family, 10> all_families{
+    Family::random,         Family::short_edges,    Family::wedge_5deg,       Family::wedge_0_5deg,
+    Family::near_parallel,  Family::vertex_on_edge, Family::vertex_on_vertex, Family::edge_on_edge,
+    Family::offset_1e6,     Family::lattice_touch};
+
+std::string_view to_string(Family family);
+std::optional<Family> parse_family(std::string_view name);
+
+struct PolygonPair {
+  std::vector<Point2> cp;  // contact polygon, CCW, strictly convex (m)
+  std::vector<Point2> tp;  // target polygon, CCW, strictly convex (m)
+};
+
+// The pair number `index` of `family` in the stream of `seed`. Pairs are independent of each
+// other: a failing pair is reproduced from its three numbers alone.
+PolygonPair generate_pair(Family family, std::uint64_t seed, std::uint64_t index);
+
+// The strict convex hull of `points`, CCW from the lowest-leftmost vertex, decided with exact
+// orientation: no repeated and no collinear vertex. Fewer than 3 vertices when the points are
+// all collinear (or fewer than 3 distinct).
+std::vector<Point2> convex_hull(std::vector<Point2> points);
+
+// Every coordinate rounded to the nearest multiple of 2^grid_exponent, each polygon replaced
+// by its strict convex hull; nullopt when a polygon collapses below 3 vertices.
+std::optional<PolygonPair> snap_to_grid(const PolygonPair& pair, int grid_exponent);
+
+// The pair translated by `offset` when every coordinate sum is exact, else nullopt.
+std::optional<PolygonPair> translate_exactly(const PolygonPair& pair, Vector2 offset);
+
+}  // namespace rockcontact::robustness
