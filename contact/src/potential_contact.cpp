@@ -91,10 +91,16 @@ EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp
   s.t.erase(std::unique(s.t.begin(), s.t.end()), s.t.end());
   std::erase_if(s.t, [](const FT& x) { return x < FT(0) || x > FT(1); });
 
+  // Every IP point lies in both polygons, so each exit distance is >= 0. In double a
+  // near-parallel crossing, correct to a few ulps across its edge, may slide along it out of
+  // the other polygon; there the envelope is negative and would flip the sign of a sliver's
+  // force. Clamping at 0 keeps the sliver's force at its true, rounding-sized, magnitude.
+  // (In exact arithmetic the points are inside and the clamp never acts.)
+  const auto inside = [](const FT& d) { return d < FT(0) ? FT(0) : d; };
   const auto g = [&](const FT& t) {
     FT value(0);
-    if (!cp_zero) value += s.cp_distance.at(t);
-    if (!tp_zero) value -= s.tp_distance.at(t);
+    if (!cp_zero) value += inside(s.cp_distance.at(t));
+    if (!tp_zero) value -= inside(s.tp_distance.at(t));
     return value;
   };
   const FT dx = q.x - p.x, dy = q.y - p.y;

@@ -462,9 +462,13 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   const std::uint64_t n = 100;
   const Point2 p{0.1, 0.2}, q{0.7, -0.3};
   const Point2 well_separated{0.4, 0.9};  // |det| ~ 0.4, far above the bound ~1e-16
-  // Non-axis-aligned exactly collinear points: fl(det) is zero or tiny but the bound is not,
-  // so the filter cannot certify the zero and must fall back.
-  const Point2 a{0.375, 0.125}, b{0.875, 0.375}, c{1.625, 0.75};
+  // Exactly collinear points whose products round (0.1 and 0.7 have full 53-bit significands;
+  // c = 2 b exactly): fl(det) is zero but the bound is not, and no stage in double can certify
+  // the zero, so the filter must fall back to GMP.
+  const Point2 a{0.0, 0.0}, b{0.1, 0.7}, c{0.2, 1.4};
+  // Exactly collinear dyadic points: every difference and product is exact in double, so the
+  // exact-in-double stage settles the zero without GMP.
+  const Point2 da{0.375, 0.125}, db{0.875, 0.375}, dc{1.625, 0.75};
 
   rk::reset_predicate_counters();
   for (std::uint64_t i = 0; i < n; ++i) BOOST_TEST((rk::orientation<rk::Filtered>(p, q, well_separated) == Sign::positive));
@@ -478,6 +482,12 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   counted = rk::predicate_counters();
   BOOST_TEST(counted.calls[cross] == n);
   BOOST_TEST(counted.fallbacks[cross] == n);
+
+  rk::reset_predicate_counters();
+  for (std::uint64_t i = 0; i < n; ++i) BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
+  counted = rk::predicate_counters();
+  BOOST_TEST(counted.calls[cross] == n);
+  BOOST_TEST(counted.fallbacks[cross] == 0u);
 
   // Axis-aligned collinear: the exact-zero shortcut, no fallback.
   rk::reset_predicate_counters();
@@ -522,6 +532,9 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   static_cast<void>(a);
   static_cast<void>(b);
   static_cast<void>(c);
+  static_cast<void>(da);
+  static_cast<void>(db);
+  static_cast<void>(dc);
   static_cast<void>(cross);
   static_cast<void>(side);
 #endif

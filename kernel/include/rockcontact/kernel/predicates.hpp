@@ -11,7 +11,9 @@
 // a line-line crossing, tested with crossing_side on the lines' defining input points.
 //
 // Three stages, as in CGAL's filtered kernel and geogram's PCK:
-//   1. filter: the formula in double with a proven error bound; answers when |value| > bound;
+//   1. filter: the formula in double with a proven error bound; answers when |value| > bound
+//      (cross: a static bound, then a check that no operation rounded at all, which settles
+//      most exact touches; crossing_side: a semi-static bound, then a running error bound);
 //   2. exact:  the same formula in GMP rationals (kernel/src/predicates_exact.cpp);
 //   3. no symbolic perturbation: a zero is a real answer (touching contact), not a tie to break.
 // The Float policy stops after evaluating stage 1's value without the bound; the Exact policy
@@ -54,6 +56,36 @@ inline constexpr auto double_diff = [](double a, double b) { return a - b; };
 inline constexpr double cross_error_factor = (3.0 + 16.0 * unit_roundoff) * unit_roundoff;
 inline constexpr double cross_underflow_term = 0x1p-1070;
 
+// Stage 1b for the cross product, before GMP: when the four differences and the two products
+// were all computed without rounding error, left - right is the exact determinant and comparing
+// left with right gives its sign. This settles most exact touches (e.g. two parallel edges with
+// bitwise-equal difference vectors), which the filter cannot certify as zero. The rounding
+// error of a difference is found by Knuth's two-sum, that of a product by fma (a correctly
+// rounded fused multiply-add returns it exactly); both are exact in IEEE double.
+inline bool difference_is_exact(double a, double b, double difference) {
+  const double b_virtual = a - difference;
+  const double a_virtual = difference + b_virtual;
+  return (a - a_virtual) + (b_virtual - b) == 0.0;
+}
+
+inline std::optional<Sign> cross_sign_exact_in_double(const Point2& p0, const Point2& p1,
+                                                      const Point2& q0, const Point2& q1,
+                                                      double ux, double uy, double vx, double vy,
+                                                      double left, double right) {
+  if (!difference_is_exact(p1.x, p0.x, ux) || !difference_is_exact(p1.y, p0.y, uy) ||
+      !difference_is_exact(q1.x, q0.x, vx) || !difference_is_exact(q1.y, q0.y, vy)) {
+    return std::nullopt;
+  }
+  // The error of a product is representable (so fma returns it exactly) only when the product
+  // is far enough from the subnormal range; closer to it, or on overflow, go to GMP.
+  const auto product_is_exact = [](double a, double b, double product) {
+    if (a == 0.0 || b == 0.0) return true;
+    return std::isfinite(product) && std::fabs(product) >= 0x1p-960 && std::fma(a, b, -product) == 0.0;
+  };
+  if (!product_is_exact(ux, vy, left) || !product_is_exact(uy, vx, right)) return std::nullopt;
+  return left > right ? Sign::positive : (left < right ? Sign::negative : Sign::zero);
+}
+
 inline Sign cross_sign_filtered(const Point2& p0, const Point2& p1, const Point2& q0,
                                 const Point2& q1) {
   count_call(PredicateKind::cross);
@@ -68,6 +100,9 @@ inline Sign cross_sign_filtered(const Point2& p0, const Point2& p1, const Point2
   // A difference of two doubles is zero exactly when they are equal, so a product with a zero
   // difference factor is exactly zero: the common axis-aligned touching case needs no GMP.
   if ((ux == 0.0 || vy == 0.0) && (uy == 0.0 || vx == 0.0)) return Sign::zero;
+  if (const auto sign = cross_sign_exact_in_double(p0, p1, q0, q1, ux, uy, vx, vy, left, right)) {
+    return *sign;
+  }
   count_fallback(PredicateKind::cross);
   return cross_sign_exact(p0, p1, q0, q1);
 }
