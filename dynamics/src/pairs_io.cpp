@@ -1,10 +1,7 @@
 #include "rockcontact/dynamics/pairs_io.hpp"
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -12,6 +9,7 @@
 #include <utility>
 
 #include "rockcontact/contact/potential_contact.hpp"
+#include "rockcontact/dynamics/json_read.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
 
@@ -27,146 +25,47 @@ std::string join_message(const std::string& source, const std::string& path,
   return path.empty() ? source + ": " + problem : source + ": " + path + ": " + problem;
 }
 
-// "got ..." for messages: the JSON type and the value, cut short when long.
-std::string describe(const json& value) {
-  constexpr std::size_t max_shown = 40;
-  if (value.is_null()) return "null";
-  // A document built in memory may hold NaN or infinity, which dump() would print as null.
-  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
-    return "non-finite number " + std::to_string(value.get<double>());
-  }
-  std::string text = value.dump();
-  if (text.size() > max_shown) text = text.substr(0, max_shown) + "...";
-  return std::string(value.type_name()) + " " + text;
-}
-
-std::string child(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
-}
-
-std::string element(const std::string& path, std::size_t index) {
-  return path + "[" + std::to_string(index) + "]";
-}
-
-// One field of an object: its name, whether it must be present, and what it must hold (the
-// "expected ..." of every message about it).
-struct Field {
-  std::string_view name;
-  bool required;
-  std::string_view expected;
-};
-
-constexpr Field document_fields[] = {
+constexpr JsonField document_fields[] = {
     {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
     {"H", true, "the potential length scale H in m, a finite number > 0"},
     {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
     {"demarcation", false, "one of \"paper\", \"exact\""},
     {"pairs", true, "an array of pairs {\"id\", \"cp\", \"tp\"}"},
 };
-constexpr Field pair_fields[] = {
+constexpr JsonField pair_fields[] = {
     {"id", true, "a string, unique within the file"},
     {"cp", true, "the contact polygon, an array of [x, y] vertices"},
     {"tp", true, "the target polygon, an array of [x, y] vertices"},
 };
 
-const Field& field(std::span<const Field> fields, std::string_view name) {
-  return *std::find_if(fields.begin(), fields.end(),
-                       [&](const Field& f) { return f.name == name; });
+std::string_view expected(std::span<const JsonField> fields, std::string_view name) {
+  return json_field(fields, name).expected;
 }
 
-// One document being parsed: knows its source name for every message.
-class Parser {
- public:
-  explicit Parser(const std::string& source) : source_(source) {}
+PairSpec read_pair(const JsonReader& reader, const json& value, const std::string& path) {
+  reader.check_object(value, path, "a pair, an object {\"id\", \"cp\", \"tp\"}", pair_fields);
+  return {reader.string(value.at("id"), json_child(path, "id"), expected(pair_fields, "id")),
+          reader.polygon(value.at("cp"), json_child(path, "cp"), expected(pair_fields, "cp")),
+          reader.polygon(value.at("tp"), json_child(path, "tp"), expected(pair_fields, "tp"))};
+}
 
-  [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
-    throw InputError(source_, path, problem);
-  }
-
-  [[noreturn]] void fail_expected(const std::string& path, std::string_view expected,
-                                  const json& got) const {
-    fail(path, "expected " + std::string(expected) + ", got " + describe(got));
-  }
-
-  // Checks that `value` is an object whose fields are all in `fields`, with the required ones.
-  void check_object(const json& value, const std::string& path, std::string_view expected,
-                    std::span<const Field> fields) const {
-    if (!value.is_object()) fail_expected(path, expected, value);
-    std::string names;
-    for (const Field& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);
-    for (const auto& [key, item] : value.items()) {
-      const bool known =
-          std::any_of(fields.begin(), fields.end(), [&](const Field& f) { return f.name == key; });
-      if (!known) fail(child(path, key), "unknown field; expected only " + names);
-    }
-    for (const Field& f : fields) {
-      if (f.required && !value.contains(f.name)) {
-        fail(child(path, f.name), "missing field; expected " + std::string(f.expected));
-      }
+std::vector<PairSpec> read_pair_list(const JsonReader& reader, const json& value) {
+  const std::string path = "pairs";
+  if (!value.is_array()) reader.fail_expected(path, expected(document_fields, "pairs"), value);
+  std::vector<PairSpec> result;
+  result.reserve(value.size());
+  std::unordered_map<std::string, std::size_t> first_index;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    result.push_back(read_pair(reader, value[i], json_element(path, i)));
+    const auto [it, inserted] = first_index.emplace(result.back().id, i);
+    if (!inserted) {
+      reader.fail(json_child(json_element(path, i), "id"),
+                  "duplicate id \"" + result.back().id + "\" (also " +
+                      json_element(path, it->second) + ".id); expected ids unique within the file");
     }
   }
-
-  double positive(const json& value, const std::string& path, const Field& f) const {
-    if (!value.is_number() || !std::isfinite(value.get<double>()) || !(value.get<double>() > 0.0)) {
-      fail_expected(path, f.expected, value);
-    }
-    return value.get<double>();
-  }
-
-  template <class Choice>
-  Choice choice(const json& value, const std::string& path, const Field& f,
-                std::optional<Choice> (*parse)(std::string_view)) const {
-    if (value.is_string()) {
-      if (const auto parsed = parse(value.get_ref<const std::string&>())) return *parsed;
-    }
-    fail_expected(path, f.expected, value);
-  }
-
-  std::vector<kernel::Point2> polygon(const json& value, const std::string& path,
-                                      const Field& f) const {
-    if (!value.is_array()) fail_expected(path, f.expected, value);
-    std::vector<kernel::Point2> vertices;
-    vertices.reserve(value.size());
-    for (std::size_t i = 0; i < value.size(); ++i) {
-      const json& v = value[i];
-      if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
-        fail_expected(element(path, i), "a vertex, an [x, y] pair of numbers", v);
-      }
-      vertices.push_back({v[0].get<double>(), v[1].get<double>()});
-    }
-    return vertices;
-  }
-
-  PairSpec pair(const json& value, const std::string& path) const {
-    check_object(value, path, "a pair, an object {\"id\", \"cp\", \"tp\"}", pair_fields);
-    const json& id = value.at("id");
-    if (!id.is_string()) fail_expected(child(path, "id"), field(pair_fields, "id").expected, id);
-    return {id.get<std::string>(),
-            polygon(value.at("cp"), child(path, "cp"), field(pair_fields, "cp")),
-            polygon(value.at("tp"), child(path, "tp"), field(pair_fields, "tp"))};
-  }
-
-  std::vector<PairSpec> pairs(const json& value) const {
-    const std::string path = "pairs";
-    if (!value.is_array()) fail_expected(path, field(document_fields, "pairs").expected, value);
-    std::vector<PairSpec> result;
-    result.reserve(value.size());
-    std::unordered_map<std::string, std::size_t> first_index;
-    for (std::size_t i = 0; i < value.size(); ++i) {
-      result.push_back(pair(value[i], element(path, i)));
-      const auto [it, inserted] = first_index.emplace(result.back().id, i);
-      if (!inserted) {
-        fail(child(element(path, i), "id"), "duplicate id \"" + result.back().id + "\" (also " +
-                                                element(path, it->second) +
-                                                ".id); expected ids unique within the file");
-      }
-    }
-    return result;
-  }
-
- private:
-  const std::string& source_;
-};
+  return result;
+}
 
 // Evaluates one pair into `result`, or returns the kernel's message for an invalid polygon.
 template <kernel::NumberPolicy Policy>
@@ -245,42 +144,28 @@ InputError::InputError(std::string source, std::string path, const std::string& 
       path_(std::move(path)) {}
 
 PairsInput parse_pairs(const json& document, const std::string& source_name) {
-  const Parser parser(source_name);
-  parser.check_object(document, "", "a JSON object {\"kn\", \"H\", \"pairs\", ...}",
+  const JsonReader reader(source_name);
+  reader.check_object(document, "", "a JSON object {\"kn\", \"H\", \"pairs\", ...}",
                       document_fields);
   PairsInput input;
   input.source = source_name;
-  input.kn = parser.positive(document.at("kn"), "kn", field(document_fields, "kn"));
-  input.H = parser.positive(document.at("H"), "H", field(document_fields, "H"));
+  input.kn = reader.positive(document.at("kn"), "kn", expected(document_fields, "kn"));
+  input.H = reader.positive(document.at("H"), "H", expected(document_fields, "H"));
   if (document.contains("policy")) {
-    input.policy = parser.choice(document.at("policy"), "policy", field(document_fields, "policy"),
-                                 &kernel::parse_policy);
+    input.policy = reader.choice(document.at("policy"), "policy",
+                                 expected(document_fields, "policy"), &kernel::parse_policy);
   }
   if (document.contains("demarcation")) {
     input.demarcation =
-        parser.choice(document.at("demarcation"), "demarcation",
-                      field(document_fields, "demarcation"), &kernel::parse_demarcation);
+        reader.choice(document.at("demarcation"), "demarcation",
+                      expected(document_fields, "demarcation"), &kernel::parse_demarcation);
   }
-  input.pairs = parser.pairs(document.at("pairs"));
+  input.pairs = read_pair_list(reader, document.at("pairs"));
   return input;
 }
 
 PairsInput read_pairs_file(const std::filesystem::path& file) {
-  const std::string source = file.string();
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) throw InputError(source, "", "cannot open the file for reading");
-  json document;
-  try {
-    document = json::parse(stream);
-  } catch (const json::exception& e) {
-    // nlohmann's messages start with "[json.exception.<kind>.<id>] "; the rest carries the
-    // line and column of a syntax error.
-    const std::string_view what = e.what();
-    const auto end_of_tag = what.find("] ");
-    const auto detail = end_of_tag == std::string_view::npos ? what : what.substr(end_of_tag + 2);
-    throw InputError(source, "", "malformed JSON: " + std::string(detail));
-  }
-  return parse_pairs(document, source);
+  return parse_pairs(read_json_file(file), file.string());
 }
 
 ordered_json run_pairs(const PairsInput& input, const PairsOverrides& overrides) {
