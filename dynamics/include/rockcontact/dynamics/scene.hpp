@@ -1,0 +1,91 @@
+#pragma once
+// Scenes: the JSON documents `rockcontact run` reads, mapped onto the explicit 2D DDA
+// (dda2d.hpp). Every field is checked; unknown fields are errors naming the file and JSON path.
+//
+//   {"description": text                                 (optional, ignored by the run)
+//    "dimension": 2                                       (3: "not supported yet")
+//    "time": {"dt": s > 0, "duration": s > 0},
+//    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
+//    "plane": "stress" | "strain"                         (optional, default stress)
+//    "damping": alpha 1/s >= 0                            (optional, default 0: eq. 5c off)
+//    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
+//                         "poisson_ratio": 0 <= nu < 0.5}, ...},
+//    "contact": {"law": "potential", "kn": Pa > 0,
+//                "H": m > 0 | "mean_edge" | "inscribed",
+//                "kt": N/m > 0, "friction_angle_deg": 0 <= phi < 90   (both or neither;
+//                                                                       neither: frictionless)
+//                "policy": "float" | "filtered" | "exact"          (optional, default filtered)
+//                "demarcation": "paper" | "exact"},                (optional, default exact)
+//    "blocks": [{"id": unique string, "material": a name of "materials",
+//                "vertices": [[x, y], ...] m, CCW, strictly convex,
+//                "fixed": bool (default false), "rigid": bool (default false),
+//                "velocity": [vx, vy, omega] m/s, m/s, rad/s of the centroid (default 0;
+//                            not allowed on a fixed block)}, ...],
+//    "output": {"track": [block ids] (default: every block that is not fixed),
+//               "every": steps >= 1 (default 100)}}                (optional)
+//
+// H, the potential's length scale (seed 000 eq. 14), is one number for the whole scene:
+//   number       as given;
+//   "mean_edge"  the mean edge length over every edge of every block (fixed ones included): the
+//                unified H of the paper's current approach (§5.1), which does not depend on
+//                which block is CP and which TP;
+//   "inscribed"  the paper's "previous approach" (§5.1) used each block's inscribed-circle
+//                radius as its own H. Our contact law takes one H per scene, so this is the
+//                smallest inscribed radius over all blocks (fixed ones included): the stiffest
+//                of the per-block potentials, the one that sets the stability limit.
+//
+// Polygons are validated here (kernel::ConvexPolygon) so that a bad vertex is reported with the
+// file and the path "blocks[i].vertices[k]", the kernel's message naming the block id.
+
+#include <cstddef>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rockcontact/dynamics/dda2d.hpp"
+
+namespace rockcontact::dynamics {
+
+enum class HRule { given, mean_edge, inscribed };
+
+std::string_view to_string(HRule rule);
+
+struct Scene {
+  std::string source;       // the file it came from, for messages and the summary
+  std::string description;  // free text, may be empty
+  std::vector<BlockSpec> blocks;
+  ContactLaw law;           // law.normal.H already resolved from h_rule
+  DdaParams params;
+  double duration = 0.0;    // s
+  HRule h_rule = HRule::given;
+  std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
+  std::size_t every = 100;         // record tracks and frames every `every` steps
+};
+
+// The number of steps that covers the duration: duration / dt rounded up, except that a ratio
+// within 1e-9 (relative) of an integer counts as that integer (1.0 / 1e-4 is 10000 steps, not
+// 10001 because of the decimal's rounding). The run ends at steps * dt >= duration.
+std::size_t step_count(const Scene& scene);
+
+// Mean length of all edges of all blocks, m.
+double mean_edge_length(std::span<const BlockSpec> blocks);
+
+// Radius of the largest circle inside a strictly convex CCW polygon, m. The centre (x, y) and
+// radius r maximise r subject to dist(p, edge line k) >= r for every edge k, a linear program in
+// (x, y, r) whose optimum sits where three constraints are tight: every triple of edge lines is
+// solved and the largest feasible r kept (O(n^4), for the few vertices of a block).
+double inscribed_radius(std::span<const kernel::Point2> polygon);
+
+// min over blocks of inscribed_radius, m.
+double smallest_inscribed_radius(std::span<const BlockSpec> blocks);
+
+// Throws InputError ("<source>: <path>: ...") for anything the format above does not allow.
+Scene parse_scene(const nlohmann::json& document, const std::string& source_name);
+
+// Reads and parses a file; InputError also for an unreadable file or malformed JSON.
+Scene read_scene_file(const std::filesystem::path& file);
+
+}  // namespace rockcontact::dynamics

@@ -1,0 +1,447 @@
+#include "rockcontact/dynamics/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+
+#include "rockcontact/dynamics/json_read.hpp"
+#include "rockcontact/kernel/convex_polygon.hpp"
+
+namespace rockcontact::dynamics {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr JsonField scene_fields[] = {
+    {"description", false, "a string"},
+    {"dimension", true, "2"},
+    {"time", true, "an object {\"dt\", \"duration\"}"},
+    {"gravity", false, "the gravity [gx, gy] in m/s², two finite numbers"},
+    {"plane", false, "one of \"stress\", \"strain\""},
+    {"damping", false, "the mass damping alpha in 1/s, a finite number >= 0"},
+    {"materials", true,
+     "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
+    {"contact", true, "an object {\"law\", \"kn\", \"H\", ...}"},
+    {"blocks", true, "a non-empty array of blocks {\"id\", \"material\", \"vertices\", ...}"},
+    {"output", false, "an object {\"track\", \"every\"}"},
+};
+constexpr JsonField time_fields[] = {
+    {"dt", true, "the time step in s, a finite number > 0"},
+    {"duration", true, "the simulated time in s, a finite number > 0"},
+};
+constexpr JsonField material_fields[] = {
+    {"density", true, "the density in kg/m³, a finite number > 0"},
+    {"youngs_modulus", true, "Young's modulus in Pa, a finite number > 0"},
+    {"poisson_ratio", true, "Poisson's ratio, a number in [0, 0.5)"},
+};
+constexpr JsonField contact_fields[] = {
+    {"law", true, "\"potential\" (the distance-potential contact of seed 000)"},
+    {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
+    {"H", true,
+     "the potential length scale H: a length in m > 0, \"mean_edge\" or \"inscribed\""},
+    {"kt", false, "the tangential penalty kt in N/m, a finite number > 0"},
+    {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
+    {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
+    {"demarcation", false, "one of \"paper\", \"exact\""},
+};
+constexpr JsonField block_fields[] = {
+    {"id", true, "a non-empty string, unique within the scene"},
+    {"material", true, "the name of one of the scene's materials"},
+    {"vertices", true, "the block's polygon, an array of [x, y] vertices in m, CCW"},
+    {"fixed", false, "true or false"},
+    {"rigid", false, "true or false"},
+    {"velocity", false, "the centroid velocity [vx, vy, omega] in m/s, m/s, rad/s"},
+};
+constexpr JsonField output_fields[] = {
+    {"track", false, "an array of block ids"},
+    {"every", false, "the recording interval in steps, an integer >= 1"},
+};
+
+std::string_view expected(std::span<const JsonField> fields, std::string_view name) {
+  return json_field(fields, name).expected;
+}
+
+std::optional<PlaneMode> parse_plane(std::string_view text) {
+  if (text == "stress") return PlaneMode::stress;
+  if (text == "strain") return PlaneMode::strain;
+  return std::nullopt;
+}
+
+std::optional<HRule> parse_h_rule(std::string_view text) {
+  if (text == "mean_edge") return HRule::mean_edge;
+  if (text == "inscribed") return HRule::inscribed;
+  return std::nullopt;
+}
+
+using Materials = std::map<std::string, Material, std::less<>>;
+
+// A document being parsed: the reader (source name) plus what later fields refer to.
+class SceneParser {
+ public:
+  explicit SceneParser(const std::string& source) : reader_(source) {}
+
+  void dimension(const json& document) const {
+    if (!document.contains("dimension")) {
+      reader_.fail("dimension", "missing field; expected 2");
+    }
+    const json& value = document.at("dimension");
+    if (value.is_number_integer() && value.get<std::int64_t>() == 3) {
+      reader_.fail("dimension", "3D scenes are not supported yet; expected 2");
+    }
+    if (!value.is_number_integer() || value.get<std::int64_t>() != 2) {
+      reader_.fail_expected("dimension", "2", value);
+    }
+  }
+
+  void time(const json& value, Scene& scene) const {
+    reader_.check_object(value, "time", expected(scene_fields, "time"), time_fields);
+    scene.params.dt =
+        reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
+    scene.duration = reader_.positive(value.at("duration"), "time.duration",
+                                      expected(time_fields, "duration"));
+  }
+
+  void physics(const json& document, Scene& scene) const {
+    if (document.contains("gravity")) {
+      const auto g = reader_.numbers(document.at("gravity"), "gravity", 2,
+                                     expected(scene_fields, "gravity"));
+      scene.params.gravity = {g[0], g[1]};
+    }
+    if (document.contains("plane")) {
+      scene.params.plane = reader_.choice(document.at("plane"), "plane",
+                                          expected(scene_fields, "plane"), &parse_plane);
+    }
+    if (document.contains("damping")) {
+      scene.params.mass_damping = reader_.non_negative(document.at("damping"), "damping",
+                                                       expected(scene_fields, "damping"));
+    }
+  }
+
+  void materials(const json& value) {
+    if (!value.is_object()) {
+      reader_.fail_expected("materials", expected(scene_fields, "materials"), value);
+    }
+    for (const auto& [name, item] : value.items()) materials_.emplace(name, material(item, name));
+  }
+
+  // Leaves law.normal.H for resolve_h, once the blocks are known.
+  void contact(const json& value, Scene& scene) {
+    const std::string path = "contact";
+    reader_.check_object(value, path, expected(scene_fields, "contact"), contact_fields);
+    if (reader_.string(value.at("law"), "contact.law", expected(contact_fields, "law")) !=
+        "potential") {
+      reader_.fail_expected("contact.law", expected(contact_fields, "law"), value.at("law"));
+    }
+    ContactLaw& law = scene.law;
+    law.normal.kn = reader_.positive(value.at("kn"), "contact.kn", expected(contact_fields, "kn"));
+    h(value.at("H"), scene);
+    friction(value, law);
+    if (value.contains("policy")) {
+      law.policy = reader_.choice(value.at("policy"), "contact.policy",
+                                  expected(contact_fields, "policy"), &kernel::parse_policy);
+    }
+    if (value.contains("demarcation")) {
+      law.normal.demarcation =
+          reader_.choice(value.at("demarcation"), "contact.demarcation",
+                         expected(contact_fields, "demarcation"), &kernel::parse_demarcation);
+    }
+  }
+
+  void blocks(const json& value, Scene& scene) const {
+    if (!value.is_array() || value.empty()) {
+      reader_.fail_expected("blocks", expected(scene_fields, "blocks"), value);
+    }
+    std::unordered_map<std::string, std::size_t> first_index;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      const std::string path = json_element("blocks", i);
+      scene.blocks.push_back(block(value[i], path));
+      const auto [it, inserted] = first_index.emplace(scene.blocks.back().id, i);
+      if (!inserted) {
+        reader_.fail(json_child(path, "id"), "duplicate id \"" + scene.blocks.back().id +
+                                                 "\" (also " + json_element("blocks", it->second) +
+                                                 ".id); expected ids unique within the scene");
+      }
+    }
+  }
+
+  // Without "output" or "output.track", every block that is not fixed is tracked.
+  void output(const json& document, Scene& scene) const {
+    const json no_output = json::object();
+    const json& value = document.contains("output") ? document.at("output") : no_output;
+    reader_.check_object(value, "output", expected(scene_fields, "output"), output_fields);
+    if (value.contains("every")) {
+      const std::int64_t every =
+          reader_.integer(value.at("every"), "output.every", expected(output_fields, "every"));
+      if (every < 1) {
+        reader_.fail_expected("output.every", expected(output_fields, "every"), value.at("every"));
+      }
+      scene.every = static_cast<std::size_t>(every);
+    }
+    if (value.contains("track")) {
+      track(value.at("track"), scene);
+    } else {
+      for (const BlockSpec& b : scene.blocks) {
+        if (!b.fixed) scene.track.push_back(b.id);
+      }
+    }
+  }
+
+  void resolve_h(Scene& scene) const {
+    switch (scene.h_rule) {
+      case HRule::given: return;
+      case HRule::mean_edge: scene.law.normal.H = mean_edge_length(scene.blocks); return;
+      case HRule::inscribed: scene.law.normal.H = smallest_inscribed_radius(scene.blocks); return;
+    }
+  }
+
+ private:
+  Material material(const json& value, const std::string& name) const {
+    const std::string path = json_child("materials", name);
+    reader_.check_object(value, path, "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
+                         material_fields);
+    Material m;
+    m.density = reader_.positive(value.at("density"), json_child(path, "density"),
+                                 expected(material_fields, "density"));
+    m.youngs_modulus = reader_.positive(value.at("youngs_modulus"),
+                                        json_child(path, "youngs_modulus"),
+                                        expected(material_fields, "youngs_modulus"));
+    const std::string nu_path = json_child(path, "poisson_ratio");
+    const std::string_view nu_expected = expected(material_fields, "poisson_ratio");
+    m.poisson_ratio = reader_.non_negative(value.at("poisson_ratio"), nu_path, nu_expected);
+    if (!(m.poisson_ratio < 0.5)) {
+      reader_.fail_expected(nu_path, nu_expected, value.at("poisson_ratio"));
+    }
+    return m;
+  }
+
+  void h(const json& value, Scene& scene) const {
+    const std::string_view what = expected(contact_fields, "H");
+    if (value.is_string()) {
+      scene.h_rule = reader_.choice(value, "contact.H", what, &parse_h_rule);
+      return;
+    }
+    scene.h_rule = HRule::given;
+    scene.law.normal.H = reader_.positive(value, "contact.H", what);
+  }
+
+  void friction(const json& value, ContactLaw& law) const {
+    const bool has_kt = value.contains("kt");
+    const bool has_phi = value.contains("friction_angle_deg");
+    if (!has_kt && !has_phi) return;
+    if (has_kt != has_phi) {
+      const std::string_view missing = has_kt ? "friction_angle_deg" : "kt";
+      reader_.fail(json_child("contact", missing),
+                   "missing field; expected " + std::string(expected(contact_fields, missing)) +
+                       " (kt and friction_angle_deg come together; give neither for "
+                       "frictionless contact)");
+    }
+    FrictionLaw friction;
+    friction.kt = reader_.positive(value.at("kt"), "contact.kt", expected(contact_fields, "kt"));
+    const std::string_view phi_expected = expected(contact_fields, "friction_angle_deg");
+    friction.friction_angle_deg = reader_.non_negative(
+        value.at("friction_angle_deg"), "contact.friction_angle_deg", phi_expected);
+    if (!(friction.friction_angle_deg < 90.0)) {
+      reader_.fail_expected("contact.friction_angle_deg", phi_expected,
+                            value.at("friction_angle_deg"));
+    }
+    law.friction = friction;
+  }
+
+  BlockSpec block(const json& value, const std::string& path) const {
+    reader_.check_object(value, path, "a block, an object {\"id\", \"material\", \"vertices\", ...}",
+                         block_fields);
+    BlockSpec spec;
+    spec.id = reader_.string(value.at("id"), json_child(path, "id"), expected(block_fields, "id"));
+    if (spec.id.empty()) {
+      reader_.fail_expected(json_child(path, "id"), expected(block_fields, "id"), value.at("id"));
+    }
+    spec.material = material_of(value.at("material"), json_child(path, "material"));
+    spec.vertices = polygon(value.at("vertices"), json_child(path, "vertices"), spec.id);
+    if (value.contains("fixed")) {
+      spec.fixed = reader_.boolean(value.at("fixed"), json_child(path, "fixed"),
+                                   expected(block_fields, "fixed"));
+    }
+    if (value.contains("rigid")) {
+      spec.rigid = reader_.boolean(value.at("rigid"), json_child(path, "rigid"),
+                                   expected(block_fields, "rigid"));
+    }
+    if (value.contains("velocity")) {
+      const std::string velocity_path = json_child(path, "velocity");
+      const auto v = reader_.numbers(value.at("velocity"), velocity_path, 3,
+                                     expected(block_fields, "velocity"));
+      if (spec.fixed && (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0)) {
+        reader_.fail(velocity_path,
+                     "a fixed block does not move; expected no velocity (or zeros) on it");
+      }
+      spec.velocity = {v[0], v[1]};
+      spec.omega = v[2];
+    }
+    return spec;
+  }
+
+  Material material_of(const json& value, const std::string& path) const {
+    const std::string& name = reader_.string(value, path, expected(block_fields, "material"));
+    const auto it = materials_.find(name);
+    if (it == materials_.end()) {
+      std::string names;
+      for (const auto& [known, m] : materials_) names += (names.empty() ? "" : ", ") + known;
+      reader_.fail(path, "unknown material \"" + name + "\"; expected one of the scene's " +
+                             "materials (" + (names.empty() ? "none defined" : names) + ")");
+    }
+    return it->second;
+  }
+
+  std::vector<kernel::Point2> polygon(const json& value, const std::string& path,
+                                      const std::string& id) const {
+    std::vector<kernel::Point2> vertices =
+        reader_.polygon(value, path, expected(block_fields, "vertices"));
+    try {
+      kernel::ConvexPolygon::make("block '" + id + "'", vertices, kernel::VertexOrder::require_ccw);
+    } catch (const kernel::InvalidPolygon& e) {
+      reader_.fail(e.vertex() >= 0 ? json_element(path, static_cast<std::size_t>(e.vertex())) : path,
+                   e.what());
+    }
+    return vertices;
+  }
+
+  void track(const json& value, Scene& scene) const {
+    const std::string path = "output.track";
+    if (!value.is_array()) reader_.fail_expected(path, expected(output_fields, "track"), value);
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      const std::string item_path = json_element(path, i);
+      const std::string& id = reader_.string(value[i], item_path, "a block id");
+      const bool known = std::any_of(scene.blocks.begin(), scene.blocks.end(),
+                                     [&](const BlockSpec& b) { return b.id == id; });
+      if (!known) reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
+      if (std::find(scene.track.begin(), scene.track.end(), id) != scene.track.end()) {
+        reader_.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
+      }
+      scene.track.push_back(id);
+    }
+  }
+
+  JsonReader reader_;
+  Materials materials_;
+};
+
+}  // namespace
+
+std::string_view to_string(HRule rule) {
+  switch (rule) {
+    case HRule::given: return "given";
+    case HRule::mean_edge: return "mean_edge";
+    case HRule::inscribed: return "inscribed";
+  }
+  return "?";
+}
+
+std::size_t step_count(const Scene& scene) {
+  const double ratio = scene.duration / scene.params.dt;
+  const double nearest = std::round(ratio);
+  const bool integral = std::abs(ratio - nearest) <= 1e-9 * nearest;
+  return static_cast<std::size_t>(integral ? nearest : std::ceil(ratio));
+}
+
+double mean_edge_length(std::span<const BlockSpec> blocks) {
+  double total = 0.0;
+  std::size_t edges = 0;
+  for (const BlockSpec& b : blocks) {
+    const std::size_t n = b.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const kernel::Point2& p = b.vertices[i];
+      const kernel::Point2& q = b.vertices[(i + 1) % n];
+      total += std::hypot(q.x - p.x, q.y - p.y);
+    }
+    edges += n;
+  }
+  return total / static_cast<double>(edges);
+}
+
+double inscribed_radius(std::span<const kernel::Point2> polygon) {
+  // Edge line k in a frame at the first vertex (no digits lost far from the origin): the
+  // distance from p to it, positive inside, is c_k - n_k . p with n_k the outward unit normal.
+  struct Line {
+    double nx, ny, c;
+  };
+  const std::size_t n = polygon.size();
+  const kernel::Point2 origin = polygon[0];
+  std::vector<Line> lines;
+  lines.reserve(n);
+  double size = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double ax = polygon[k].x - origin.x, ay = polygon[k].y - origin.y;
+    const double ex = polygon[(k + 1) % n].x - polygon[k].x;
+    const double ey = polygon[(k + 1) % n].y - polygon[k].y;
+    const double length = std::hypot(ex, ey);
+    const Line line{ey / length, -ex / length, (ey * ax - ex * ay) / length};
+    lines.push_back(line);
+    size = std::max(size, std::hypot(ax, ay));
+  }
+  // A candidate centre may miss a constraint by the rounding of its 3x3 solve: allow 1e-12 of
+  // the polygon's size (the solve is well conditioned: distinct unit normals of a strictly
+  // convex polygon are never collinear points of the unit circle, so the determinant is not 0).
+  const double slack = 1e-12 * size;
+  double best = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const Line& a = lines[i];
+        const Line& b = lines[j];
+        const Line& c = lines[k];
+        // n . p + r = c for the three lines, by Cramer's rule.
+        const double det = a.nx * (b.ny - c.ny) - a.ny * (b.nx - c.nx) + (b.nx * c.ny - c.nx * b.ny);
+        if (det == 0.0) continue;
+        const double x = (a.c * (b.ny - c.ny) - a.ny * (b.c - c.c) + (b.c * c.ny - c.c * b.ny)) / det;
+        const double y = (a.nx * (b.c - c.c) - a.c * (b.nx - c.nx) + (b.nx * c.c - c.nx * b.c)) / det;
+        const double r = a.c - a.nx * x - a.ny * y;
+        if (!(r > best)) continue;
+        const bool inside = std::all_of(lines.begin(), lines.end(), [&](const Line& l) {
+          return l.c - l.nx * x - l.ny * y >= r - slack;
+        });
+        if (inside) best = r;
+      }
+    }
+  }
+  return best;
+}
+
+double smallest_inscribed_radius(std::span<const BlockSpec> blocks) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const BlockSpec& b : blocks) smallest = std::min(smallest, inscribed_radius(b.vertices));
+  return smallest;
+}
+
+Scene parse_scene(const json& document, const std::string& source_name) {
+  SceneParser parser(source_name);
+  const JsonReader reader(source_name);
+  if (!document.is_object()) {
+    reader.fail_expected("", "a JSON object {\"dimension\", \"time\", \"blocks\", ...}", document);
+  }
+  parser.dimension(document);
+  reader.check_object(document, "", "a scene object", scene_fields);
+  Scene scene;
+  scene.source = source_name;
+  if (document.contains("description")) {
+    scene.description = reader.string(document.at("description"), "description",
+                                      expected(scene_fields, "description"));
+  }
+  parser.time(document.at("time"), scene);
+  parser.physics(document, scene);
+  parser.materials(document.at("materials"));
+  parser.contact(document.at("contact"), scene);
+  parser.blocks(document.at("blocks"), scene);
+  parser.output(document, scene);
+  parser.resolve_h(scene);
+  return scene;
+}
+
+Scene read_scene_file(const std::filesystem::path& file) {
+  return parse_scene(read_json_file(file), file.string());
+}
+
+}  // namespace rockcontact::dynamics

@@ -1,0 +1,332 @@
+#define BOOST_TEST_MODULE scene
+#include "rockcontact/dynamics/scene.hpp"
+
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rockcontact/dynamics/pairs_io.hpp"
+
+namespace dyn = rockcontact::dynamics;
+namespace kernel = rockcontact::kernel;
+using nlohmann::json;
+
+namespace {
+
+const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
+
+// The scene of the run contract (dynamics/tests/data/scenes/two_blocks.json, inline).
+json contract_scene() {
+  return json::parse(R"({"dimension": 2,
+   "time": {"dt": 1e-4, "duration": 1.0},
+   "gravity": [0, -9.81],
+   "materials": {"rock": {"density": 2000, "youngs_modulus": 1e9, "poisson_ratio": 0.25}},
+   "contact": {"law": "potential", "kn": 1e7, "kt": 1e7, "friction_angle_deg": 10,
+               "H": 1.0, "policy": "filtered", "demarcation": "exact"},
+   "blocks": [{"id": "base", "material": "rock", "vertices": [[0,0],[4,0],[4,1],[0,1]],
+               "fixed": true},
+              {"id": "slider", "material": "rock", "vertices": [[1,1],[2,1],[2,2],[1,2]],
+               "velocity": [0.5, -0.25, 0.125], "rigid": false}],
+   "output": {"track": ["slider"], "every": 100}})");
+}
+
+// The smallest scene: what is left when every optional field is dropped.
+json minimal_scene() {
+  return json::parse(R"({"dimension": 2,
+   "time": {"dt": 1e-3, "duration": 0.5},
+   "materials": {"soft": {"density": 1500, "youngs_modulus": 2e8, "poisson_ratio": 0.3}},
+   "contact": {"law": "potential", "kn": 5e7, "H": "mean_edge"},
+   "blocks": [{"id": "ground", "material": "soft", "vertices": [[0,0],[4,0],[4,1],[0,1]],
+               "fixed": true},
+              {"id": "a", "material": "soft", "vertices": [[1,1],[2,1],[2,2],[1,2]]},
+              {"id": "b", "material": "soft", "vertices": [[3,1],[4,1],[3.5,2]]}]})");
+}
+
+// `change` applied to the contract scene must be rejected with an error naming the source, the
+// JSON path and containing `expected`.
+void expect_error(const std::function<void(json&)>& change, const std::string& path,
+                  const std::string& expected) {
+  json document = contract_scene();
+  change(document);
+  BOOST_TEST_CONTEXT("path " << path) {
+    try {
+      dyn::parse_scene(document, "case.json");
+      BOOST_ERROR("accepted a malformed scene");
+    } catch (const dyn::InputError& e) {
+      const std::string message = e.what();
+      BOOST_TEST_MESSAGE(message);
+      BOOST_TEST(e.source() == "case.json");
+      BOOST_TEST(e.path() == path);
+      BOOST_TEST(message.find("case.json: " + path + ": ") == 0);
+      BOOST_TEST(message.find(expected) != std::string::npos,
+                 "message lacks \"" << expected << '"');
+    }
+  }
+}
+
+std::optional<dyn::InputError> file_error(const std::string& file) {
+  try {
+    dyn::read_scene_file(file);
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST_MESSAGE(e.what());
+    return e;
+  }
+  return std::nullopt;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(contract_scene_maps_onto_the_engine_specs) {
+  const dyn::Scene scene = dyn::parse_scene(contract_scene(), "contract.json");
+  BOOST_TEST(scene.source == "contract.json");
+  BOOST_TEST(scene.params.dt == 1e-4);
+  BOOST_TEST(scene.duration == 1.0);
+  BOOST_TEST(scene.params.gravity.x == 0.0);
+  BOOST_TEST(scene.params.gravity.y == -9.81);
+  BOOST_TEST((scene.params.plane == dyn::PlaneMode::stress));
+  BOOST_TEST(scene.params.mass_damping == 0.0);
+
+  BOOST_TEST(scene.law.normal.kn == 1e7);
+  BOOST_TEST(scene.law.normal.H == 1.0);
+  BOOST_TEST((scene.h_rule == dyn::HRule::given));
+  BOOST_TEST((scene.law.normal.demarcation == kernel::Demarcation::exact));
+  BOOST_TEST((scene.law.policy == kernel::PolicyKind::filtered));
+  BOOST_TEST_REQUIRE(scene.law.friction.has_value());
+  BOOST_TEST(scene.law.friction->kt == 1e7);
+  BOOST_TEST(scene.law.friction->friction_angle_deg == 10.0);
+
+  BOOST_TEST_REQUIRE(scene.blocks.size() == 2u);
+  const dyn::BlockSpec& base = scene.blocks[0];
+  const dyn::BlockSpec& slider = scene.blocks[1];
+  BOOST_TEST(base.id == "base");
+  BOOST_TEST(base.fixed);
+  BOOST_TEST(!base.rigid);
+  BOOST_TEST(base.vertices.size() == 4u);
+  BOOST_TEST(slider.id == "slider");
+  BOOST_TEST(!slider.fixed);
+  BOOST_TEST(!slider.rigid);
+  BOOST_TEST((slider.vertices[2] == kernel::Point2{2, 2}));
+  BOOST_TEST(slider.material.density == 2000.0);
+  BOOST_TEST(slider.material.youngs_modulus == 1e9);
+  BOOST_TEST(slider.material.poisson_ratio == 0.25);
+  BOOST_TEST(slider.velocity.x == 0.5);
+  BOOST_TEST(slider.velocity.y == -0.25);
+  BOOST_TEST(slider.omega == 0.125);
+
+  BOOST_TEST(scene.track == std::vector<std::string>{"slider"});
+  BOOST_TEST(scene.every == 100u);
+  BOOST_TEST(dyn::step_count(scene) == 10000u);
+}
+
+BOOST_AUTO_TEST_CASE(optional_fields_take_their_documented_defaults) {
+  json document = minimal_scene();
+  const dyn::Scene scene = dyn::parse_scene(document, "minimal.json");
+  BOOST_TEST(scene.params.gravity.y == -9.81);
+  BOOST_TEST((scene.params.plane == dyn::PlaneMode::stress));
+  BOOST_TEST(scene.params.mass_damping == 0.0);
+  BOOST_TEST(!scene.law.friction.has_value());  // no kt, no friction angle: frictionless
+  BOOST_TEST((scene.law.policy == kernel::PolicyKind::filtered));
+  BOOST_TEST((scene.law.normal.demarcation == kernel::Demarcation::exact));
+  BOOST_TEST(scene.track == (std::vector<std::string>{"a", "b"}));  // every block not fixed
+  BOOST_TEST(scene.every == 100u);
+  BOOST_TEST(!scene.blocks[1].fixed);
+  BOOST_TEST(scene.blocks[1].velocity.x == 0.0);
+
+  document["plane"] = "strain";
+  document["damping"] = 0.5;
+  document["gravity"] = {0, 0};
+  document["blocks"][1]["rigid"] = true;
+  document["contact"]["policy"] = "exact";
+  document["contact"]["demarcation"] = "paper";
+  document["output"] = {{"every", 7}};
+  const dyn::Scene changed = dyn::parse_scene(document, "minimal.json");
+  BOOST_TEST((changed.params.plane == dyn::PlaneMode::strain));
+  BOOST_TEST(changed.params.mass_damping == 0.5);
+  BOOST_TEST(changed.params.gravity.y == 0.0);
+  BOOST_TEST(changed.blocks[1].rigid);
+  BOOST_TEST((changed.law.policy == kernel::PolicyKind::exact));
+  BOOST_TEST((changed.law.normal.demarcation == kernel::Demarcation::paper));
+  BOOST_TEST(changed.every == 7u);
+  BOOST_TEST(changed.track == (std::vector<std::string>{"a", "b"}));
+}
+
+// Hand values: ground 4 x 1 (edges 4, 1, 4, 1), a 1 x 1 (4 x 1), b the triangle (3,1) (4,1)
+// (3.5,2) with edges 1, sqrt(1.25), sqrt(1.25): mean = (14 + 1 + 2 sqrt(1.25)) / 11.
+BOOST_AUTO_TEST_CASE(mean_edge_H_is_the_mean_of_all_edges) {
+  const dyn::Scene scene = dyn::parse_scene(minimal_scene(), "minimal.json");
+  BOOST_TEST((scene.h_rule == dyn::HRule::mean_edge));
+  const double hand = (14.0 + 1.0 + 2.0 * std::sqrt(1.25)) / 11.0;
+  BOOST_TEST(scene.law.normal.H == hand, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(dyn::mean_edge_length(scene.blocks) == hand, boost::test_tools::tolerance(1e-15));
+}
+
+// Hand values: the triangle b has sides 1, sqrt(1.25), sqrt(1.25) and area 0.5, so its inradius
+// is area / semi-perimeter = 0.5 / (0.5 + sqrt(1.25)); the squares' is 0.5 and the ground's 0.5.
+BOOST_AUTO_TEST_CASE(inscribed_H_is_the_smallest_inscribed_radius) {
+  json document = minimal_scene();
+  document["contact"]["H"] = "inscribed";
+  const dyn::Scene scene = dyn::parse_scene(document, "minimal.json");
+  BOOST_TEST((scene.h_rule == dyn::HRule::inscribed));
+  const double hand = 0.5 / (0.5 + std::sqrt(1.25));
+  BOOST_TEST(scene.law.normal.H == hand, boost::test_tools::tolerance(1e-14));
+}
+
+// Closed forms: a 3-4-5 right triangle has r = (3 + 4 - 5) / 2 = 1; a w x h rectangle
+// min(w, h) / 2 (the optimum is not unique: any centre on the mid-line); a regular hexagon of
+// side s has s sqrt(3) / 2. The same shapes 1e6 m from the origin give the same radii to the
+// rounding of their coordinates (1e6 has ulp 1.2e-10, hence 1e-9 relative).
+BOOST_AUTO_TEST_CASE(inscribed_radius_matches_closed_forms) {
+  const auto shifted = [](std::vector<kernel::Point2> polygon, double dx, double dy) {
+    for (auto& p : polygon) p = {p.x + dx, p.y + dy};
+    return polygon;
+  };
+  const std::vector<kernel::Point2> triangle{{0, 0}, {4, 0}, {0, 3}};
+  const std::vector<kernel::Point2> rectangle{{0, 0}, {5, 0}, {5, 0.1}, {0, 0.1}};
+  std::vector<kernel::Point2> hexagon;
+  for (int k = 0; k < 6; ++k) {
+    const double angle = std::numbers::pi / 3.0 * k;
+    hexagon.push_back({2.0 * std::cos(angle), 2.0 * std::sin(angle)});
+  }
+  BOOST_TEST(dyn::inscribed_radius(triangle) == 1.0, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(dyn::inscribed_radius(rectangle) == 0.05, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(dyn::inscribed_radius(hexagon) == std::sqrt(3.0), boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(dyn::inscribed_radius(shifted(triangle, 1e6, -1e6)) == 1.0,
+             boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(dyn::inscribed_radius(shifted(rectangle, -1e6, 1e6)) == 0.05,
+             boost::test_tools::tolerance(1e-9));
+}
+
+BOOST_AUTO_TEST_CASE(step_count_rounds_up_but_not_for_decimal_noise) {
+  dyn::Scene scene;
+  scene.params.dt = 1e-4;
+  scene.duration = 1.0;
+  BOOST_TEST(dyn::step_count(scene) == 10000u);
+  scene.params.dt = 2e-5;
+  scene.duration = 0.2;
+  BOOST_TEST(dyn::step_count(scene) == 10000u);
+  scene.params.dt = 0.1;
+  scene.duration = 0.25;
+  BOOST_TEST(dyn::step_count(scene) == 3u);
+}
+
+BOOST_AUTO_TEST_CASE(top_level_errors) {
+  expect_error([](json& d) { d["dimension"] = 3; }, "dimension", "3D scenes are not supported yet");
+  expect_error([](json& d) { d["dimension"] = "2"; }, "dimension", "expected 2, got string");
+  expect_error([](json& d) { d.erase("dimension"); }, "dimension", "missing field");
+  expect_error([](json& d) { d["colour"] = "red"; }, "colour",
+               "unknown field; expected only description, dimension, time");
+  expect_error([](json& d) { d.erase("time"); }, "time", "missing field");
+  expect_error([](json& d) { d["time"]["dt"] = -1e-4; }, "time.dt",
+               "expected the time step in s, a finite number > 0, got number -0.0001");
+  expect_error([](json& d) { d["time"]["duration"] = "1 s"; }, "time.duration",
+               "a finite number > 0");
+  expect_error([](json& d) { d["time"]["steps"] = 10; }, "time.steps", "unknown field");
+  expect_error([](json& d) { d["gravity"] = {0, -9.81, 0}; }, "gravity",
+               "two finite numbers");
+  expect_error([](json& d) { d["gravity"] = {0, "down"}; }, "gravity[1]", "a finite number");
+  expect_error([](json& d) { d["plane"] = "axisymmetric"; }, "plane",
+               R"(one of "stress", "strain")");
+  expect_error([](json& d) { d["damping"] = -0.1; }, "damping", "a finite number >= 0");
+}
+
+BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
+  expect_error([](json& d) { d["materials"] = json::array(); }, "materials", "expected an object");
+  expect_error([](json& d) { d["materials"]["rock"]["cohesion"] = 1e5; },
+               "materials.rock.cohesion", "unknown field");
+  expect_error([](json& d) { d["materials"]["rock"].erase("density"); },
+               "materials.rock.density", "missing field");
+  expect_error([](json& d) { d["materials"]["rock"]["poisson_ratio"] = 0.5; },
+               "materials.rock.poisson_ratio", "a number in [0, 0.5)");
+  expect_error([](json& d) { d["contact"]["law"] = "coulomb"; }, "contact.law",
+               R"(expected "potential")");
+  expect_error([](json& d) { d["contact"]["kn"] = 0; }, "contact.kn", "a finite number > 0");
+  expect_error([](json& d) { d["contact"]["H"] = "median"; }, "contact.H",
+               R"(a length in m > 0, "mean_edge" or "inscribed", got string "median")");
+  expect_error([](json& d) { d["contact"]["H"] = -1.0; }, "contact.H", "a length in m > 0");
+  expect_error([](json& d) { d["contact"].erase("friction_angle_deg"); },
+               "contact.friction_angle_deg", "kt and friction_angle_deg come together");
+  expect_error([](json& d) { d["contact"].erase("kt"); }, "contact.kt",
+               "kt and friction_angle_deg come together");
+  expect_error([](json& d) { d["contact"]["friction_angle_deg"] = 90; },
+               "contact.friction_angle_deg", "a number in [0, 90)");
+  expect_error([](json& d) { d["contact"]["policy"] = "fast"; }, "contact.policy",
+               R"(one of "float", "filtered", "exact")");
+  expect_error([](json& d) { d["contact"]["mu"] = 0.3; }, "contact.mu", "unknown field");
+}
+
+BOOST_AUTO_TEST_CASE(block_errors) {
+  expect_error([](json& d) { d["blocks"] = json::array(); }, "blocks", "a non-empty array");
+  expect_error([](json& d) { d["blocks"][1]["colour"] = "red"; }, "blocks[1].colour",
+               "unknown field; expected only id, material, vertices, fixed, rigid, velocity");
+  expect_error([](json& d) { d["blocks"][1].erase("vertices"); }, "blocks[1].vertices",
+               "missing field");
+  expect_error([](json& d) { d["blocks"][1]["vertices"][2] = {2}; }, "blocks[1].vertices[2]",
+               "expected a vertex, an [x, y] pair of numbers, got array [2]");
+  expect_error([](json& d) { d["blocks"][1]["id"] = "base"; }, "blocks[1].id",
+               R"(duplicate id "base" (also blocks[0].id))");
+  expect_error([](json& d) { d["blocks"][1]["id"] = ""; }, "blocks[1].id", "a non-empty string");
+  expect_error([](json& d) { d["blocks"][1]["material"] = "granite"; }, "blocks[1].material",
+               R"(unknown material "granite"; expected one of the scene's materials (rock))");
+  expect_error([](json& d) { d["blocks"][1]["fixed"] = "yes"; }, "blocks[1].fixed",
+               "expected true or false");
+  expect_error([](json& d) { d["blocks"][1]["velocity"] = {1, 0}; }, "blocks[1].velocity",
+               "[vx, vy, omega]");
+  expect_error([](json& d) { d["blocks"][0]["velocity"] = {1, 0, 0}; }, "blocks[0].velocity",
+               "a fixed block does not move");
+}
+
+// Polygon errors come from the kernel's validation: the message names the block id and the
+// vertex, the path the vertex (or the polygon, for whole-polygon problems).
+BOOST_AUTO_TEST_CASE(polygon_errors_name_the_block) {
+  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {1.5, 1}, {2, 1}, {2, 2}}; },
+               "blocks[1].vertices[1]", "polygon block 'slider', vertex 1: is collinear");
+  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {1, 2}, {2, 2}, {2, 1}}; },
+               "blocks[1].vertices", "block 'slider'");
+  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}}; },
+               "blocks[1].vertices", "needs at least 3 vertices");
+  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}, {2, 1}, {1, 2}}; },
+               "blocks[1].vertices[2]", "repeats vertex 1");
+}
+
+BOOST_AUTO_TEST_CASE(output_errors) {
+  expect_error([](json& d) { d["output"]["track"] = {"slider", "ghost"}; }, "output.track[1]",
+               R"(no block has the id "ghost")");
+  expect_error([](json& d) { d["output"]["track"] = {"slider", "slider"}; }, "output.track[1]",
+               "listed twice");
+  expect_error([](json& d) { d["output"]["track"] = "slider"; }, "output.track",
+               "an array of block ids");
+  expect_error([](json& d) { d["output"]["every"] = 0; }, "output.every", "an integer >= 1");
+  expect_error([](json& d) { d["output"]["every"] = 2.5; }, "output.every", "an integer >= 1");
+  expect_error([](json& d) { d["output"]["format"] = "csv"; }, "output.format", "unknown field");
+}
+
+BOOST_AUTO_TEST_CASE(file_errors_name_the_file) {
+  const auto bad_vertex = file_error(scene_dir + "/slider.json");
+  BOOST_TEST_REQUIRE(bad_vertex.has_value());
+  BOOST_TEST(bad_vertex->path() == "blocks[1].vertices[2]");
+  BOOST_TEST(contains(bad_vertex->what(), "slider.json: blocks[1].vertices[2]: expected a vertex"));
+
+  const auto collinear = file_error(scene_dir + "/collinear.json");
+  BOOST_TEST_REQUIRE(collinear.has_value());
+  BOOST_TEST(contains(collinear->what(), "collinear.json: blocks[1].vertices[1]: polygon block "
+                                         "'slider', vertex 1: is collinear"));
+
+  const auto three_d = file_error(scene_dir + "/three_d.json");
+  BOOST_TEST_REQUIRE(three_d.has_value());
+  BOOST_TEST(contains(three_d->what(), "three_d.json: dimension: 3D scenes are not supported yet"));
+
+  const auto missing = file_error(scene_dir + "/no_such_scene.json");
+  BOOST_TEST_REQUIRE(missing.has_value());
+  BOOST_TEST(contains(missing->what(), "no_such_scene.json: cannot open"));
+
+  BOOST_TEST(!file_error(scene_dir + "/two_blocks.json").has_value());
+}
