@@ -11,6 +11,12 @@ function(rockcontact_add_test name)
     ROCKCONTACT_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples")
   if(ARG_CGAL)
     target_link_libraries(${name} PRIVATE CGAL::CGAL)
+    if(ROCKCONTACT_SANITIZE)
+      # CGAL's arrangement iterators (used by its Boolean operations) downcast a face base to
+      # the face type in a way UBSan's vptr check reports although it is CGAL-internal and
+      # well defined in practice; every other check stays on for these tests.
+      target_compile_options(${name} PRIVATE -fno-sanitize=vptr)
+    endif()
   endif()
   add_test(NAME ${name} COMMAND ${name} --log_level=message --report_level=short)
 endfunction()
