@@ -14,8 +14,9 @@ function(rockcontact_add_test name)
     if(ROCKCONTACT_SANITIZE)
       # CGAL's arrangement iterators (used by its Boolean operations) downcast a face base to
       # the face type in a way UBSan's vptr check reports although it is CGAL-internal and
-      # well defined in practice; every other check stays on for these tests.
-      target_compile_options(${name} PRIVATE -fno-sanitize=vptr)
+      # well defined in practice; every other check stays on for these tests. (A source
+      # property, because it must follow -fsanitize=undefined on the command line.)
+      set_source_files_properties(${ARG_SOURCES} PROPERTIES COMPILE_OPTIONS -fno-sanitize=vptr)
     endif()
   endif()
   add_test(NAME ${name} COMMAND ${name} --log_level=message --report_level=short)
