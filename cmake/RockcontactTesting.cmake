@@ -6,6 +6,7 @@ function(rockcontact_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} rockcontact_options
     Boost::unit_test_framework)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/robustness_tests/support)
   target_compile_definitions(${name} PRIVATE BOOST_TEST_DYN_LINK
     ROCKCONTACT_TESTDATA_DIR="${PROJECT_SOURCE_DIR}/robustness_tests/data"
     ROCKCONTACT_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples")

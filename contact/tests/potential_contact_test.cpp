@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE contact_potential_contact
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/seed.hpp"
+
 // Potential contact of a pair (seed 000 §3.2, eq. 11-20) against independent references:
 //   (a) closed forms for overlapping axis-aligned rectangles, derived below by hand;
 //   (b) Newton's third law, evaluate_pair(cp, tp) = -evaluate_pair(tp, cp);
@@ -89,14 +91,9 @@ using rk::Vector2;
 
 namespace {
 
-constexpr double u = 0x1p-53;
+using rockcontact::testing::seed_for;
 
-std::uint64_t seed_for(const std::string& test, std::uint64_t fallback) {
-  const char* env = std::getenv("ROCKCONTACT_TEST_SEED");
-  const std::uint64_t seed = env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
-  BOOST_TEST_MESSAGE(test << ": seed " << seed << " (override with ROCKCONTACT_TEST_SEED)");
-  return seed;
-}
+constexpr double u = rockcontact::testing::unit_roundoff;
 
 ConvexPolygon rectangle(const std::string& name, double x0, double x1, double y0, double y1) {
   return ConvexPolygon::make(name, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE kernel_cgal_reference
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/seed.hpp"
+
 // The entrance block (seed 000 eq. 9) and the intersection polygon (Table 3) against CGAL in
 // exact rational arithmetic (Simple_cartesian<mpq_class>: every double input is the rational it
 // denotes, every CGAL construction is exact):
@@ -68,14 +70,9 @@ using CPolygonWithHoles = CGAL::Polygon_with_holes_2<K>;
 
 namespace {
 
-constexpr double u = 0x1p-53;
+using rockcontact::testing::seed_for;
 
-std::uint64_t seed_for(const std::string& test, std::uint64_t fallback) {
-  const char* env = std::getenv("ROCKCONTACT_TEST_SEED");
-  const std::uint64_t seed = env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
-  BOOST_TEST_MESSAGE(test << ": seed " << seed << " (override with ROCKCONTACT_TEST_SEED)");
-  return seed;
-}
+constexpr double u = rockcontact::testing::unit_roundoff;
 
 // ---------------------------------------------------------------------------------------------
 // Exact helpers

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE kernel_convex_polygon
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/seed.hpp"
+
 // ConvexPolygon::make: one named degenerate case per InvalidPolygon::Reason, each checking the
 // reason, the reported vertex and that the message names the polygon and the vertex; the
 // clockwise normalisation; and nearly collinear vertices whose acceptance must follow their
@@ -28,12 +30,7 @@ using Reason = InvalidPolygon::Reason;
 
 namespace {
 
-std::uint64_t seed_for(const std::string& test, std::uint64_t fallback) {
-  const char* env = std::getenv("ROCKCONTACT_TEST_SEED");
-  const std::uint64_t seed = env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
-  BOOST_TEST_MESSAGE(test << ": seed " << seed << " (override with ROCKCONTACT_TEST_SEED)");
-  return seed;
-}
+using rockcontact::testing::seed_for;
 
 const char* reason_name(Reason r) {
   switch (r) {

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE kernel_potential
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/seed.hpp"
+
 // The shortest-exit potential (seed 000 eq. 12-14), its demarcation points (§3.2.3) and the
 // polygon moments, against analytic references:
 //   * exit_distance on a rectangle (the smallest of the four axis distances) and at the
@@ -38,14 +40,9 @@ using rk::Point2;
 
 namespace {
 
-constexpr double u = 0x1p-53;
+using rockcontact::testing::seed_for;
 
-std::uint64_t seed_for(const std::string& test, std::uint64_t fallback) {
-  const char* env = std::getenv("ROCKCONTACT_TEST_SEED");
-  const std::uint64_t seed = env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
-  BOOST_TEST_MESSAGE(test << ": seed " << seed << " (override with ROCKCONTACT_TEST_SEED)");
-  return seed;
-}
+constexpr double u = rockcontact::testing::unit_roundoff;
 
 ConvexPolygon rectangle(double x0, double x1, double y0, double y1) {
   return ConvexPolygon::make("rectangle", {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});

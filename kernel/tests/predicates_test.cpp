@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE kernel_predicates
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/seed.hpp"
+
 // Predicates (cross_sign, orientation, crossing_side) under Float, Filtered and Exact against an
 // exact evaluation written here in GMP rationals. Every double is the exact rational it denotes,
 // so the reference signs are exact. Filtered and Exact must agree with the reference on every
@@ -38,14 +40,9 @@ using rk::Sign;
 
 namespace {
 
-constexpr double u = 0x1p-53;  // unit roundoff of double, round to nearest
+using rockcontact::testing::seed_for;
 
-std::uint64_t seed_for(const std::string& test, std::uint64_t fallback) {
-  const char* env = std::getenv("ROCKCONTACT_TEST_SEED");
-  const std::uint64_t seed = env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
-  BOOST_TEST_MESSAGE(test << ": seed " << seed << " (override with ROCKCONTACT_TEST_SEED)");
-  return seed;
-}
+constexpr double u = rockcontact::testing::unit_roundoff;
 
 Sign sign(const mpq_class& x) { return static_cast<Sign>(sgn(x)); }
 
