@@ -3,19 +3,63 @@
 //
 // Each block carries d = (u0, v0, r0, ex, ey, gxy) (eq. 2): centroid translation, rotation and
 // constant strain, with u(x, y) = T(x, y) d (eq. 3). Per step, from t_n to t_n+1 = t_n + h:
-//   1. contacts: broad phase (skipped for a handful of blocks) -> overlap -> IP -> normal force
-//      f_n and contact point pg (contact/potential_contact.hpp); tangential force by Coulomb
-//      stick/slide on the accumulated relative displacement of pg (eq. 24-26); both applied
-//      as T(xg, yg)^T f to CP and its negative to TP (eq. 22-23, 28-29);
-//   2. F = gravity + contact + initial-stress force (K d folded into F as a step initial
-//      stress, §2.3); M d'' = F with M = rho ∫ T^T T dA from the polygon moments (eq. 5a);
-//   3. velocity Verlet (eq. 7-8): d'_{n+1/2} = d'_{n-1/2} + h d''_n, Δd = h d'_{n+1/2};
-//   4. configuration update: vertices moved by the exact rotation about the centroid plus the
-//      strain and translation, so a freely spinning block keeps its area (the first-order map
-//      T inflates it by (1 + r0²) per step: the classic DDA free-rotation error);
-//      friction records advanced by the relative displacement of pg (§3.2.6).
+//   1. contacts: broad phase (sweep and prune on x above 8 blocks, every pair below) ->
+//      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp);
+//      tangential force by Coulomb stick/slide on the accumulated relative displacement of pg
+//      (eq. 24-26, contact/friction.hpp); f = f_n + f_t applied as T(xg, yg)^T f to CP and its
+//      negative to TP (eq. 22-23, 28-29). For a pair of blocks (i, j), i < j, CP is block i;
+//   2. F = gravity (m g on u0, v0) + contact + initial-stress force (-S sigma on ex, ey, gxy:
+//      K d folded into F as a step initial stress, §2.3); M d'' = F with M = rho ∫ T^T T dA
+//      from the polygon's central moments (eq. 5a; the translation block decouples);
+//   3. velocity Verlet (eq. 7-8), kept with full-step velocities:
+//      d'_{n+1/2} = d'_n + h/2 d''_n,  Δd = h d'_{n+1/2},  d'_{n+1} = d'_{n+1/2} + h/2 d''_{n+1}
+//      (the same positions as eq. 7's d'_{n+1/2} = d'_{n-1/2} + h d''_n);
+//   4. configuration update: every vertex v moves to c + Δ(u0, v0) + R(Δr0) (I + Δε) (v - c),
+//      with R the exact rotation matrix and Δε the strain increment, and the centroid is
+//      recomputed from the new vertices. A freely spinning block therefore keeps its area; the
+//      first-order map I + T would inflate it by (1 + Δr0²) per step (the classic DDA
+//      free-rotation error). Friction records advance by the relative displacement of pg
+//      under the same map (§3.2.6).
 // Rigid blocks carry 3 DOF and skip every strain term; fixed blocks (§3.3 virtual polygons)
 // take part in contact only. Frictionless laws keep no tangential state at all.
+//
+// Departures from the paper, each for a stated reason:
+//   * mass is conserved: the density is m / S with m = rho S at the start and S the current
+//     area, so a strained block keeps its mass and momentum exactly;
+//   * stress and strain rate turn with the block: sigma <- R (sigma + E Δε) R^T and the
+//     strain-rate part of d' is rotated likewise, so a rotating stressed block keeps its strain
+//     energy and kinetic energy (the paper accumulates sigma in fixed axes);
+//   * mass damping (eq. 5c, off by default as in the paper) is integrated implicitly in the
+//     second half kick, d'_{n+1} = (d'_{n+1/2} + h/2 M^-1 F_{n+1}) / (1 + alpha h/2).
+//
+// ## Critical time step
+// Velocity Verlet is stable for h < 2 / omega_max. The estimate of omega_max (documented
+// conservative bounds, computed once at construction; the message of a rejection names the
+// block or pair that set it):
+//   * strain modes of each deformable block: the largest generalized eigenvalue of (K, M) on
+//     (r0, ex, ey, gxy), K = S E (exact for the block alone);
+//   * each pair with a movable block: omega² = (kn / H · L + kt) (c_i + c_j). The potential force
+//     over a contact is kn / H · (depth) per unit length of the IP boundary (a face-on-face
+//     contact of length l gives 2 kn l / H per unit depth: both faces of the thin IP count), and
+//     that boundary is no longer than L = min(perimeter_i, perimeter_j) since the IP lies in
+//     both blocks; c is the largest compliance of a point of the block (max over vertices of the
+//     largest eigenvalue of T M^-1 T^T; zero for a fixed block). By the Rayleigh quotient this
+//     bounds the pair's stiffest mode; kt enters only with friction. A block pressed by several
+//     neighbours at once can exceed a single pair's estimate; the monitor below stops such a run.
+// For the paper's sets (seed 000 Tables 4-5: rho 2000, E 0.1-1 GPa, kn 1e7-5e7 Pa, H ~ 1 m,
+// blocks ~1 m, dt 1e-5 ... 1e-3 s) the estimate is 0.7 ms for a deformable 1 m square with
+// E = 1 GPa (the strain modes limit it; the contact allows ~3.8 ms), above every listed dt.
+//
+// ## Stability monitor (StabilityError after the step that found it)
+//   * a non-finite velocity, stress or vertex, naming the block;
+//   * energy growth: total() - total(0) > 2 (kinetic(0) + strain(0) + max_t |gravitational(t)| +
+//     E_floor), E_floor = Σ m (1 mm/s)² / 2: the energy tripled beyond all it could draw on.
+//     A stable velocity-Verlet run keeps its energy within a factor 1 / (1 - (omega h / 2)²) of
+//     the start, which stays below 3 for omega h < 1.63; a diverging run grows geometrically
+//     and crosses the bound within a few steps;
+//   * penetration: the minimum translation distance of an overlapping pair (entrance block,
+//     computed under the Filtered policy) above half the smaller inradius of the two blocks:
+//     the contact no longer holds the blocks apart (kn too small for the load, or too fast).
 
 #include <array>
 #include <cstddef>
@@ -25,6 +69,7 @@
 #include <string>
 #include <vector>
 
+#include "rockcontact/contact/friction.hpp"
 #include "rockcontact/contact/potential_contact.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 #include "rockcontact/kernel/point.hpp"
@@ -36,27 +81,25 @@ using kernel::Point2;
 using kernel::Vector2;
 
 struct Material {
-  double density = 2000.0;       // kg/m³
-  double youngs_modulus = 1.0e9;  // Pa
-  double poisson_ratio = 0.25;    // -
+  double density = 2000.0;        // kg/m³, > 0
+  double youngs_modulus = 1.0e9;  // Pa, > 0
+  double poisson_ratio = 0.25;    // -, in (-1, 0.5)
 };
 
 enum class PlaneMode { stress, strain };
 
 struct BlockSpec {
-  std::string id;
+  std::string id;                // non-empty, unique; names the block in every message
   std::vector<Point2> vertices;  // CCW, strictly convex, m
   Material material;
   bool fixed = false;  // a virtual polygon (§3.3): takes part in contact, never moves
   bool rigid = false;  // 3 DOF (u0, v0, r0): no strain terms
-  Vector2 velocity;    // of the centroid, m/s
-  double omega = 0.0;  // angular velocity, rad/s (CCW)
+  Vector2 velocity;    // of the centroid, m/s (zero for a fixed block)
+  double omega = 0.0;  // angular velocity, rad/s (CCW; zero for a fixed block)
 };
 
-struct FrictionLaw {
-  double kt = 1.0e7;               // tangential penalty, N/m (per metre of thickness)
-  double friction_angle_deg = 0.0;  // phi
-};
+// kt (N/m per metre of thickness) and friction_angle_deg (phi, degrees in [0, 90)).
+using FrictionLaw = contact::FrictionLaw;
 
 struct ContactLaw {
   contact::PotentialContactParams normal;
@@ -65,10 +108,10 @@ struct ContactLaw {
 };
 
 struct DdaParams {
-  double dt = 1.0e-4;                // s
+  double dt = 1.0e-4;                // s, finite > 0 and <= the critical estimate
   Vector2 gravity{0.0, -9.81};       // m/s²
   PlaneMode plane = PlaneMode::stress;
-  double mass_damping = 0.0;         // alpha of eq. 5c, 1/s (off by default, as in the paper)
+  double mass_damping = 0.0;         // alpha of eq. 5c, 1/s, >= 0 (off by default, as in the paper)
 };
 
 struct BlockState {
@@ -79,20 +122,35 @@ struct BlockState {
   std::array<double, 6> velocity{};  // d' = (u0', v0', r0', ex', ey', gxy'), m/s, rad/s, 1/s
   std::array<double, 3> stress{};    // sigma_x, sigma_y, tau_xy, Pa (zero for rigid blocks)
   double area = 0.0;                 // m²
-  double mass = 0.0;                 // kg per m of thickness
+  double mass = 0.0;                 // kg per m of thickness (constant)
   bool fixed = false;
   bool rigid = false;
 };
 
-// All in J per metre of thickness. total() is conserved without friction and damping, up to
-// the O(h²) error of the integrator and the contact penalty's stored energy.
+// A pair in contact at the current instant: its polygons overlap and the force is non-zero.
+struct ContactState {
+  std::size_t cp = 0;        // index of CP in blocks(): the lower index of the pair
+  std::size_t tp = 0;        // index of TP: the higher
+  Point2 point;              // contact point pg, m
+  Vector2 normal_force;      // on CP, N/m; on TP the opposite
+  Vector2 friction_force;    // on CP, N/m; on TP the opposite; zero when frictionless
+  bool sliding = false;      // the friction force is at the Coulomb limit
+  double penetration = 0.0;  // minimum translation distance that separates the pair, m
+};
+
+// All in J per metre of thickness, at the current instant. total() is conserved up to the
+// O(h²) error of the integrator.
 struct Energies {
-  double kinetic = 0.0;
-  double gravitational = 0.0;  // m g·x relative to the start
-  double strain = 0.0;
-  double contact = 0.0;        // energy stored in the normal (and stick) penalty springs
-  double friction_dissipated = 0.0;
-  double damping_dissipated = 0.0;
+  double kinetic = 0.0;        // ½ d'^T M d' summed over blocks
+  double gravitational = 0.0;  // -m g·(c - c_0) summed over blocks: relative to the start
+  double strain = 0.0;         // ½ S sigma^T E^-1 sigma summed over deformable blocks
+  // Work done against the contact forces since the start, minus friction_dissipated: the
+  // energy held by the normal and stick penalty springs. Accumulated per step as
+  // -½ (F_c(t_n) + F_c(t_n+1))·Δd over the blocks (trapezoid in time, F_c the generalized
+  // contact force), so it is zero at the start even for blocks that start overlapping.
+  double contact = 0.0;
+  double friction_dissipated = 0.0;  // Σ |f_t|·|tangential slip increment| over sliding steps
+  double damping_dissipated = 0.0;   // kinetic energy removed by the mass damping
   double total() const {
     return kinetic + gravitational + strain + contact + friction_dissipated + damping_dissipated;
   }
@@ -107,19 +165,25 @@ class StabilityError : public std::runtime_error {
 class Dda2d {
  public:
   // Validates everything (throws kernel::InvalidPolygon naming the block, std::invalid_argument
-  // naming the parameter) and refuses dt above the critical estimate 2 / omega_max from the
-  // largest block and contact stiffness (StabilityError).
+  // naming the parameter or block) and refuses dt above the critical estimate 2 / omega_max
+  // from the largest block and contact stiffness (StabilityError naming dt, the estimate and
+  // the block or pair that set it). Evaluates the forces at t = 0 (contacts() is valid).
   Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params);
 
   // One step; throws StabilityError on NaN, on energy growth beyond what the integrator can
-  // explain, or on penetration deeper than the blocks themselves.
+  // explain, or on penetration deeper than the blocks themselves (see the monitor above).
+  // After a StabilityError the state is that of the failed step, for inspection only.
   void step();
 
   double time() const noexcept;
   std::size_t steps() const noexcept;
   const std::vector<BlockState>& blocks() const noexcept;
+  const std::vector<ContactState>& contacts() const noexcept;  // at the current instant
   Energies energies() const;
-  double critical_time_step() const noexcept;  // s
+  double critical_time_step() const noexcept;  // s; +infinity when nothing limits it
+  // What set critical_time_step(): "elastic stiffness of block 'A' ..." or "contact of block
+  // 'A' with block 'B' ..."; empty when nothing limits it.
+  const std::string& critical_time_step_source() const noexcept;
   double max_penetration() const noexcept;     // largest minimum-translation distance seen, m
   kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
 

@@ -1,0 +1,656 @@
+#include "rockcontact/dynamics/dda2d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+
+#include <Eigen/Dense>
+
+#include "block_matrices.hpp"
+#include "broad_phase.hpp"
+#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/kernel/entrance_block.hpp"
+
+namespace rockcontact::dynamics {
+namespace {
+
+using detail::BlockPair;
+using detail::Vector6;
+
+// Above this many blocks the candidate pairs come from sweep and prune; below, every pair is
+// tried (the broad phase would cost more than it saves).
+constexpr std::size_t broad_phase_threshold = 8;
+// Stability monitor (dda2d.hpp): growth bound factor, floor speed (m/s), penetration fraction.
+constexpr double energy_growth_factor = 2.0;
+constexpr double energy_floor_speed = 1.0e-3;
+constexpr double penetration_fraction = 0.5;
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+std::string block_name(const std::string& id) { return "block '" + id + "'"; }
+
+double dot6(const Vector6& a, const Vector6& b) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 6; ++k) sum += a[k] * b[k];
+  return sum;
+}
+
+bool finite(double x) { return std::isfinite(x); }
+
+// R A R^T for the symmetric A = [[a, q], [q, b]] and R the rotation by the angle (cos c, sin s).
+std::array<double, 3> rotate_tensor(double a, double b, double q, double c, double s) {
+  return {c * c * a - 2.0 * c * s * q + s * s * b, s * s * a + 2.0 * c * s * q + c * c * b,
+          c * s * (a - b) + (c * c - s * s) * q};
+}
+
+void check_params(const ContactLaw& law, const DdaParams& params) {
+  if (!finite(params.dt) || !(params.dt > 0.0)) {
+    throw std::invalid_argument("dda2d: dt must be finite and > 0 (s), got " + number(params.dt));
+  }
+  if (!finite(params.gravity.x) || !finite(params.gravity.y)) {
+    throw std::invalid_argument("dda2d: gravity must be finite (m/s²)");
+  }
+  if (!finite(params.mass_damping) || !(params.mass_damping >= 0.0)) {
+    throw std::invalid_argument("dda2d: mass_damping must be finite and >= 0 (1/s), got " +
+                                number(params.mass_damping));
+  }
+  if (!finite(law.normal.kn) || !(law.normal.kn > 0.0)) {
+    throw std::invalid_argument("dda2d: contact kn must be finite and > 0 (Pa), got " +
+                                number(law.normal.kn));
+  }
+  if (!finite(law.normal.H) || !(law.normal.H > 0.0)) {
+    throw std::invalid_argument("dda2d: contact H must be finite and > 0 (m), got " +
+                                number(law.normal.H));
+  }
+  if (law.friction) contact::check_friction_law(*law.friction);
+}
+
+void check_spec(const BlockSpec& spec, std::set<std::string>& ids) {
+  if (spec.id.empty()) throw std::invalid_argument("dda2d: a block has an empty id");
+  const std::string name = block_name(spec.id);
+  if (!ids.insert(spec.id).second) throw std::invalid_argument("dda2d: duplicate " + name);
+  const Material& m = spec.material;
+  if (!finite(m.density) || !(m.density > 0.0)) {
+    throw std::invalid_argument("dda2d: " + name + ": density must be finite and > 0 (kg/m³), got " +
+                                number(m.density));
+  }
+  if (!finite(m.youngs_modulus) || !(m.youngs_modulus > 0.0)) {
+    throw std::invalid_argument("dda2d: " + name +
+                                ": youngs_modulus must be finite and > 0 (Pa), got " +
+                                number(m.youngs_modulus));
+  }
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
+    throw std::invalid_argument("dda2d: " + name + ": poisson_ratio must be in (-1, 0.5), got " +
+                                number(m.poisson_ratio));
+  }
+  if (!finite(spec.velocity.x) || !finite(spec.velocity.y) || !finite(spec.omega)) {
+    throw std::invalid_argument("dda2d: " + name + ": velocity and omega must be finite");
+  }
+  if (spec.fixed && (spec.velocity.x != 0.0 || spec.velocity.y != 0.0 || spec.omega != 0.0)) {
+    throw std::invalid_argument("dda2d: " + name + ": a fixed block cannot have a velocity");
+  }
+}
+
+// What the engine keeps per block besides the public BlockState.
+struct Body {
+  explicit Body(kernel::ConvexPolygon p) : polygon(std::move(p)) {}
+
+  kernel::ConvexPolygon polygon;  // current
+  Material material;
+  Eigen::Matrix3d elasticity;   // E of eq. 5b, Pa
+  Eigen::Matrix3d flexibility;  // E^-1, 1/Pa
+  Point2 initial_centroid;      // m
+  double inradius = 0.0;        // m, at the start (strains are small)
+  double perimeter = 0.0;       // m, at the start
+  double compliance = 0.0;      // largest point compliance, 1/kg (0 when fixed)
+  double elastic_omega2 = 0.0;  // rad²/s², 0 unless deformable
+  Eigen::Matrix4d rs_mass;      // (r0, ex, ey, gxy) block of M (deformable)
+  Eigen::LLT<Eigen::Matrix4d> rs_factor;
+  double inertia = 0.0;         // rigid: kg m²/m
+  Vector6 force{};              // generalized force at the current instant
+  Vector6 contact_force{};      // its contact part
+  Vector6 acceleration{};       // M^-1 force
+  Vector6 increment{};          // Δd of the last step
+};
+
+}  // namespace
+
+struct Dda2d::Impl {
+  Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params);
+
+  void advance();
+  Energies energies() const;
+
+  // Construction.
+  void add_block(const BlockSpec& spec);
+  void estimate_critical_step();
+  // Geometry-dependent data after the vertices moved.
+  void refresh(std::size_t i);
+  // Forces and accelerations at the current instant.
+  void evaluate_forces();
+  template <kernel::NumberPolicy Policy>
+  void evaluate_contacts();
+  void candidate_pairs();
+  double penetration(std::size_t i, std::size_t j);
+  void apply_contact(const ContactState& c);
+  void solve_acceleration(std::size_t i);
+  // The step's parts.
+  void first_half_kick(std::size_t i);
+  void second_half_kick(std::size_t i);
+  void advance_friction_records();
+  Vector2 point_increment(std::size_t i, Point2 p) const;
+  void move(std::size_t i);
+  void check_state();
+  double kinetic(std::size_t i, const std::array<double, 6>& v) const;
+  std::string at_step() const;
+
+  ContactLaw law;
+  DdaParams params;
+  std::vector<Body> bodies;
+  std::vector<BlockState> states;
+  std::vector<ContactState> contacts;
+  // Friction records by pair, each stamped with the last evaluation that found the pair in
+  // contact; contact_records[k] is that of contacts[k] (map nodes do not move).
+  struct FrictionRecord {
+    contact::FrictionState state;
+    std::size_t evaluation = 0;
+  };
+  std::map<BlockPair, FrictionRecord> friction;
+  std::vector<contact::FrictionState*> contact_records;
+  std::size_t evaluations = 0;
+  contact::PairWorkspace workspace;
+  contact::PairResult pair;
+  detail::SweepAndPrune sweep;
+  std::vector<BlockPair> pairs;
+  std::vector<detail::BroadPhaseBox> boxes;
+  std::vector<Point2> scratch;
+
+  double time = 0.0;
+  std::size_t steps = 0;
+  double contact_work = 0.0;         // J/m, work done against contact forces
+  double friction_dissipated = 0.0;  // J/m
+  double damping_dissipated = 0.0;   // J/m
+  double initial_total = 0.0;        // J/m
+  double initial_budget = 0.0;       // kinetic(0) + strain(0) + E_floor, J/m
+  double max_gravitational = 0.0;    // max |gravitational| seen, J/m
+  double critical = std::numeric_limits<double>::infinity();
+  std::string critical_source;
+  double max_penetration = 0.0;
+  kernel::PredicateCounters counters;
+};
+
+namespace {
+
+// Adds the predicate work of its scope to a total, also when the scope throws.
+class CountInto {
+ public:
+  explicit CountInto(kernel::PredicateCounters& total)
+      : total_(total), before_(kernel::predicate_counters()) {}
+  ~CountInto() {
+    const kernel::PredicateCounters spent = kernel::predicate_counters() - before_;
+    for (std::size_t k = 0; k < kernel::predicate_kind_count; ++k) {
+      total_.calls[k] += spent.calls[k];
+      total_.fallbacks[k] += spent.fallbacks[k];
+    }
+  }
+  CountInto(const CountInto&) = delete;
+  CountInto& operator=(const CountInto&) = delete;
+
+ private:
+  kernel::PredicateCounters& total_;
+  kernel::PredicateCounters before_;
+};
+
+}  // namespace
+
+Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params)
+    : law(std::move(contact_law)), params(dda_params) {
+  check_params(law, params);
+  if (specs.empty()) throw std::invalid_argument("dda2d: no blocks");
+  std::set<std::string> ids;
+  for (const BlockSpec& spec : specs) check_spec(spec, ids);
+  bodies.reserve(specs.size());
+  states.reserve(specs.size());
+  for (const BlockSpec& spec : specs) add_block(spec);
+  estimate_critical_step();
+  evaluate_forces();
+  const Energies e = energies();
+  initial_total = e.total();
+  double floor = 0.0;
+  for (const BlockState& s : states) {
+    if (!s.fixed) floor += 0.5 * s.mass * energy_floor_speed * energy_floor_speed;
+  }
+  initial_budget = e.kinetic + e.strain + floor;
+}
+
+void Dda2d::Impl::add_block(const BlockSpec& spec) {
+  Body& b = bodies.emplace_back(kernel::ConvexPolygon::make(block_name(spec.id), spec.vertices));
+  BlockState& s = states.emplace_back();
+  s.id = spec.id;
+  s.vertices = spec.vertices;
+  s.fixed = spec.fixed;
+  s.rigid = spec.rigid;
+  if (!spec.fixed) s.velocity = {spec.velocity.x, spec.velocity.y, spec.omega, 0.0, 0.0, 0.0};
+  const detail::CentralMoments m = detail::central_moments(b.polygon.vertices(), scratch);
+  s.mass = spec.material.density * m.area;
+  b.material = spec.material;
+  b.elasticity = detail::elasticity_matrix(spec.material, params.plane);
+  b.flexibility = b.elasticity.inverse();
+  b.initial_centroid = m.centroid;
+  b.inradius = detail::inradius(b.polygon.vertices());
+  b.perimeter = detail::perimeter(b.polygon.vertices());
+  if (!spec.fixed) {
+    b.compliance = detail::max_vertex_compliance(b.polygon.vertices(), m, s.mass, spec.rigid);
+    if (!spec.rigid) b.elastic_omega2 = detail::elastic_omega_squared(m, s.mass, b.elasticity);
+  }
+  refresh(bodies.size() - 1);
+}
+
+void Dda2d::Impl::estimate_critical_step() {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].elastic_omega2 <= worst) continue;
+    worst = bodies[i].elastic_omega2;
+    const Material& m = bodies[i].material;
+    critical_source = "elastic stiffness of " + block_name(states[i].id) + " (E = " +
+                      number(m.youngs_modulus) + " Pa, nu = " + number(m.poisson_ratio) +
+                      ", mass " + number(states[i].mass) + " kg/m)";
+  }
+  const double kn_per_length = law.normal.kn / law.normal.H;
+  const double kt = law.friction ? law.friction->kt : 0.0;
+  std::size_t best_i = 0, best_j = 0;
+  double best_pair = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+      if (states[i].fixed && states[j].fixed) continue;
+      const double length = std::min(bodies[i].perimeter, bodies[j].perimeter);
+      const double w2 = (kn_per_length * length + kt) * (bodies[i].compliance + bodies[j].compliance);
+      if (w2 > best_pair) {
+        best_pair = w2;
+        best_i = i;
+        best_j = j;
+      }
+    }
+  }
+  if (best_pair > worst) {
+    worst = best_pair;
+    const Body& a = bodies[best_i];
+    const Body& b = bodies[best_j];
+    critical_source = "contact of " + block_name(states[best_i].id) + " with " +
+                      block_name(states[best_j].id) + " (kn/H L + kt = " +
+                      number(kn_per_length * std::min(a.perimeter, b.perimeter) + kt) +
+                      " N/m with L = " + number(std::min(a.perimeter, b.perimeter)) +
+                      " m, point compliances " + number(a.compliance) + " + " +
+                      number(b.compliance) + " 1/kg)";
+  }
+  if (worst == 0.0) return;
+  critical = 2.0 / std::sqrt(worst);
+  if (params.dt > critical) {
+    throw StabilityError("dda2d: dt = " + number(params.dt) + " s is above the critical time step " +
+                         number(critical) + " s (2 / omega_max, omega_max = " +
+                         number(std::sqrt(worst)) + " rad/s) set by the " + critical_source +
+                         "; use dt <= " + number(critical) + " s");
+  }
+}
+
+void Dda2d::Impl::refresh(std::size_t i) {
+  Body& b = bodies[i];
+  BlockState& s = states[i];
+  const detail::CentralMoments m = detail::central_moments(b.polygon.vertices(), scratch);
+  s.area = m.area;
+  s.centroid = m.centroid;
+  if (s.rigid) {
+    b.inertia = detail::rotational_inertia(m, s.mass);
+  } else {
+    b.rs_mass = detail::rotation_strain_mass(m, s.mass);
+    b.rs_factor.compute(b.rs_mass);
+  }
+}
+
+std::string Dda2d::Impl::at_step() const {
+  return "dda2d: step " + std::to_string(steps) + " (t = " + number(time) + " s): ";
+}
+
+// ---- forces ------------------------------------------------------------------------------
+
+void Dda2d::Impl::evaluate_forces() {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    const BlockState& s = states[i];
+    b.force = {};
+    b.contact_force = {};
+    if (s.fixed) continue;
+    b.force[0] = s.mass * params.gravity.x;
+    b.force[1] = s.mass * params.gravity.y;
+    if (!s.rigid) {
+      for (std::size_t k = 0; k < 3; ++k) b.force[3 + k] = -s.area * s.stress[k];
+    }
+  }
+  kernel::with_policy(law.policy, [&](auto policy) { evaluate_contacts<decltype(policy)>(); });
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (states[i].fixed) continue;
+    for (std::size_t k = 0; k < 6; ++k) bodies[i].force[k] += bodies[i].contact_force[k];
+    solve_acceleration(i);
+  }
+}
+
+void Dda2d::Impl::candidate_pairs() {
+  const bool small = bodies.size() <= broad_phase_threshold;
+  if (small && !pairs.empty()) return;  // every pair, fixed once
+  boxes.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    detail::BroadPhaseBox& box = boxes[i];
+    box.fixed = states[i].fixed;
+    box.xmin = box.ymin = std::numeric_limits<double>::infinity();
+    box.xmax = box.ymax = -std::numeric_limits<double>::infinity();
+    for (const Point2& p : states[i].vertices) {
+      box.xmin = std::min(box.xmin, p.x);
+      box.xmax = std::max(box.xmax, p.x);
+      box.ymin = std::min(box.ymin, p.y);
+      box.ymax = std::max(box.ymax, p.y);
+    }
+  }
+  if (small) {
+    detail::all_pairs(boxes, pairs);
+  } else {
+    sweep.find_pairs(boxes, pairs);
+  }
+}
+
+template <kernel::NumberPolicy Policy>
+void Dda2d::Impl::evaluate_contacts() {
+  candidate_pairs();
+  contacts.clear();
+  contact_records.clear();
+  ++evaluations;
+  for (const auto& [i, j] : pairs) {
+    contact::evaluate_pair<Policy>(bodies[i].polygon, bodies[j].polygon, law.normal, workspace, pair);
+    if (pair.status != kernel::Overlap::overlap || !pair.point) continue;
+    if (!finite(pair.force.x) || !finite(pair.force.y) || !finite(pair.point->x) ||
+        !finite(pair.point->y)) {
+      throw StabilityError(at_step() + "the contact of " + block_name(states[i].id) + " with " +
+                           block_name(states[j].id) + " gave a non-finite force or contact point " +
+                           "(IP of " + std::to_string(pair.ip.size()) + " vertices, area " +
+                           number(pair.area) + " m²)");
+    }
+    ContactState c;
+    c.cp = i;
+    c.tp = j;
+    c.point = *pair.point;
+    c.normal_force = pair.force;
+    c.penetration = penetration(i, j);
+    contact::FrictionState* record = nullptr;
+    if (law.friction) {
+      FrictionRecord& stamped = friction[{i, j}];  // a new contact starts in stick, d = 0
+      stamped.evaluation = evaluations;
+      record = &stamped.state;
+      const contact::FrictionResult r = contact::evaluate_friction(*record, c.normal_force, *law.friction);
+      contact::commit_friction(*record, r);
+      c.friction_force = r.force;
+      c.sliding = r.sliding;
+    }
+    apply_contact(c);
+    contacts.push_back(c);
+    contact_records.push_back(record);
+  }
+  // Pairs that separated lose their record.
+  std::erase_if(friction, [&](const auto& entry) { return entry.second.evaluation != evaluations; });
+}
+
+double Dda2d::Impl::penetration(std::size_t i, std::size_t j) {
+  const double depth =
+      kernel::compute_entrance_block<kernel::Filtered>(bodies[i].polygon, bodies[j].polygon).distance;
+  max_penetration = std::max(max_penetration, depth);
+  const double limit = penetration_fraction * std::min(bodies[i].inradius, bodies[j].inradius);
+  if (depth > limit) {
+    throw StabilityError(at_step() + block_name(states[i].id) + " and " + block_name(states[j].id) +
+                         " overlap by " + number(depth) +
+                         " m (minimum translation distance), more than half the smaller inradius (" +
+                         number(limit) + " m): the contact no longer holds them apart; kn = " +
+                         number(law.normal.kn) + " Pa is too soft for the load, or the blocks " +
+                         "move too far in one step of dt = " + number(params.dt) + " s");
+  }
+  return depth;
+}
+
+void Dda2d::Impl::apply_contact(const ContactState& c) {
+  const Vector2 f{c.normal_force.x + c.friction_force.x, c.normal_force.y + c.friction_force.y};
+  const auto add = [&](std::size_t i, double sign) {
+    if (states[i].fixed) return;
+    const Point2& o = states[i].centroid;
+    const Vector6 g = detail::transform_transpose({c.point.x - o.x, c.point.y - o.y}, f);
+    for (std::size_t k = 0; k < 6; ++k) bodies[i].contact_force[k] += sign * g[k];
+  };
+  add(c.cp, 1.0);
+  add(c.tp, -1.0);
+}
+
+void Dda2d::Impl::solve_acceleration(std::size_t i) {
+  Body& b = bodies[i];
+  const BlockState& s = states[i];
+  b.acceleration = {b.force[0] / s.mass, b.force[1] / s.mass, 0.0, 0.0, 0.0, 0.0};
+  if (s.rigid) {
+    b.acceleration[2] = b.force[2] / b.inertia;
+    return;
+  }
+  const Eigen::Vector4d rhs(b.force[2], b.force[3], b.force[4], b.force[5]);
+  const Eigen::Vector4d a = b.rs_factor.solve(rhs);
+  for (std::size_t k = 0; k < 4; ++k) b.acceleration[2 + k] = a(static_cast<Eigen::Index>(k));
+}
+
+// ---- the step ----------------------------------------------------------------------------
+
+double Dda2d::Impl::kinetic(std::size_t i, const std::array<double, 6>& v) const {
+  const BlockState& s = states[i];
+  double e = 0.5 * s.mass * (v[0] * v[0] + v[1] * v[1]);
+  if (s.rigid) return e + 0.5 * bodies[i].inertia * v[2] * v[2];
+  const Eigen::Vector4d w(v[2], v[3], v[4], v[5]);
+  return e + 0.5 * w.dot(bodies[i].rs_mass * w);
+}
+
+void Dda2d::Impl::first_half_kick(std::size_t i) {
+  std::array<double, 6>& v = states[i].velocity;
+  const Vector6& a = bodies[i].acceleration;
+  const double half = 0.5 * params.dt;
+  std::array<double, 6> kicked;
+  for (std::size_t k = 0; k < 6; ++k) kicked[k] = v[k] + half * a[k];
+  if (params.mass_damping > 0.0) {
+    const double damp = half * params.mass_damping;
+    std::array<double, 6> damped;
+    for (std::size_t k = 0; k < 6; ++k) damped[k] = kicked[k] - damp * v[k];
+    damping_dissipated += kinetic(i, kicked) - kinetic(i, damped);
+    kicked = damped;
+  }
+  v = kicked;
+  for (std::size_t k = 0; k < 6; ++k) bodies[i].increment[k] = params.dt * v[k];
+}
+
+void Dda2d::Impl::second_half_kick(std::size_t i) {
+  std::array<double, 6>& v = states[i].velocity;
+  const Vector6& a = bodies[i].acceleration;
+  const double half = 0.5 * params.dt;
+  for (std::size_t k = 0; k < 6; ++k) v[k] += half * a[k];
+  if (params.mass_damping > 0.0) {
+    const double before = kinetic(i, v);
+    for (double& x : v) x /= 1.0 + half * params.mass_damping;
+    damping_dissipated += before - kinetic(i, v);
+  }
+}
+
+// Displacement over the step of the material point at p (current position) of block i, under
+// the same map as move(): Δt + R (I + Δε) r - r, r = p - centroid.
+Vector2 Dda2d::Impl::point_increment(std::size_t i, Point2 p) const {
+  if (states[i].fixed) return {};
+  const Vector6& d = bodies[i].increment;
+  const Point2& o = states[i].centroid;
+  const double rx = p.x - o.x, ry = p.y - o.y;
+  const double sx = rx + d[3] * rx + 0.5 * d[5] * ry;
+  const double sy = ry + 0.5 * d[5] * rx + d[4] * ry;
+  const double c = std::cos(d[2]), s = std::sin(d[2]);
+  return {d[0] + (c * sx - s * sy) - rx, d[1] + (s * sx + c * sy) - ry};
+}
+
+void Dda2d::Impl::advance_friction_records() {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const ContactState& c = contacts[k];
+    const Vector2 a = point_increment(c.cp, c.point), b = point_increment(c.tp, c.point);
+    const Vector2 relative{a.x - b.x, a.y - b.y};
+    contact::FrictionState& record = *contact_records[k];
+    if (record.sliding) {
+      const double fn = std::hypot(c.normal_force.x, c.normal_force.y);
+      const double nx = c.normal_force.x / fn, ny = c.normal_force.y / fn;
+      const double along = relative.x * nx + relative.y * ny;
+      const double slip = std::hypot(relative.x - along * nx, relative.y - along * ny);
+      friction_dissipated += std::hypot(c.friction_force.x, c.friction_force.y) * slip;
+    }
+    contact::advance_friction(record, relative);
+  }
+}
+
+void Dda2d::Impl::move(std::size_t i) {
+  Body& b = bodies[i];
+  BlockState& s = states[i];
+  const Vector6& d = b.increment;
+  for (double x : d) {
+    if (!finite(x)) {
+      throw StabilityError(at_step() + block_name(s.id) + " has a non-finite displacement increment");
+    }
+  }
+  const Point2 o = s.centroid;
+  for (Point2& p : s.vertices) {
+    const Vector2 u = point_increment(i, p);
+    p = {p.x + u.x, p.y + u.y};
+  }
+  s.rotation += d[2];
+  if (!s.rigid) {
+    const double c = std::cos(d[2]), sn = std::sin(d[2]);
+    const Eigen::Vector3d dsigma = b.elasticity * Eigen::Vector3d(d[3], d[4], d[5]);
+    s.stress = rotate_tensor(s.stress[0] + dsigma(0), s.stress[1] + dsigma(1),
+                             s.stress[2] + dsigma(2), c, sn);
+    const std::array<double, 3> rate = rotate_tensor(s.velocity[3], s.velocity[4],
+                                                     0.5 * s.velocity[5], c, sn);
+    s.velocity[3] = rate[0];
+    s.velocity[4] = rate[1];
+    s.velocity[5] = 2.0 * rate[2];
+  }
+  try {
+    b.polygon = kernel::ConvexPolygon::make(block_name(s.id), s.vertices);
+  } catch (const kernel::InvalidPolygon& e) {
+    throw StabilityError(at_step() + block_name(s.id) + " is no longer a valid convex polygon (" +
+                         e.what() + "); its strain increment was (" + number(d[3]) + ", " +
+                         number(d[4]) + ", " + number(d[5]) + ") around " + number(o.x) + ", " +
+                         number(o.y));
+  }
+  refresh(i);
+}
+
+void Dda2d::Impl::check_state() {
+  for (const BlockState& s : states) {
+    const bool ok = std::all_of(s.velocity.begin(), s.velocity.end(), finite) &&
+                    std::all_of(s.stress.begin(), s.stress.end(), finite) &&
+                    finite(s.centroid.x) && finite(s.centroid.y);
+    if (!ok) throw StabilityError(at_step() + block_name(s.id) + " has a non-finite velocity or stress");
+  }
+  const Energies e = energies();
+  max_gravitational = std::max(max_gravitational, std::fabs(e.gravitational));
+  const double bound = energy_growth_factor * (initial_budget + max_gravitational);
+  const double growth = e.total() - initial_total;
+  if (!(growth <= bound)) {
+    std::size_t fastest = 0;
+    double most = -1.0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      if (states[i].fixed) continue;
+      const double k = kinetic(i, states[i].velocity);
+      if (k > most) {
+        most = k;
+        fastest = i;
+      }
+    }
+    throw StabilityError(at_step() + "the total energy grew from " + number(initial_total) + " to " +
+                         number(e.total()) + " J/m, more than the bound " + number(bound) +
+                         " J/m; " + block_name(states[fastest].id) +
+                         " holds the most kinetic energy (" + number(most) +
+                         " J/m). dt = " + number(params.dt) + " s against the critical estimate " +
+                         number(critical) + " s: the run is diverging (a block pressed by several " +
+                         "contacts at once is stiffer than any single pair)");
+  }
+}
+
+void Dda2d::Impl::advance() {
+  // Messages during the step name the step being taken and the time it reaches.
+  ++steps;
+  time = static_cast<double>(steps) * params.dt;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!states[i].fixed) first_half_kick(i);
+  }
+  for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
+  if (law.friction) advance_friction_records();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!states[i].fixed) move(i);
+  }
+  evaluate_forces();
+  for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!states[i].fixed) second_half_kick(i);
+  }
+  check_state();
+}
+
+Energies Dda2d::Impl::energies() const {
+  Energies e;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const BlockState& s = states[i];
+    if (s.fixed) continue;
+    const Body& b = bodies[i];
+    e.kinetic += kinetic(i, s.velocity);
+    e.gravitational -= s.mass * (params.gravity.x * (s.centroid.x - b.initial_centroid.x) +
+                                 params.gravity.y * (s.centroid.y - b.initial_centroid.y));
+    if (!s.rigid) {
+      const Eigen::Vector3d sigma(s.stress[0], s.stress[1], s.stress[2]);
+      e.strain += 0.5 * s.area * sigma.dot(b.flexibility * sigma);
+    }
+  }
+  e.contact = contact_work - friction_dissipated;
+  e.friction_dissipated = friction_dissipated;
+  e.damping_dissipated = damping_dissipated;
+  return e;
+}
+
+// ---- public face -------------------------------------------------------------------------
+
+Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params) {
+  kernel::PredicateCounters spent;
+  {
+    const CountInto count(spent);
+    impl_ = std::make_shared<Impl>(std::move(blocks), std::move(law), params);
+  }
+  impl_->counters = spent;
+}
+
+void Dda2d::step() {
+  const CountInto count(impl_->counters);
+  impl_->advance();
+}
+
+double Dda2d::time() const noexcept { return impl_->time; }
+std::size_t Dda2d::steps() const noexcept { return impl_->steps; }
+const std::vector<BlockState>& Dda2d::blocks() const noexcept { return impl_->states; }
+const std::vector<ContactState>& Dda2d::contacts() const noexcept { return impl_->contacts; }
+Energies Dda2d::energies() const { return impl_->energies(); }
+double Dda2d::critical_time_step() const noexcept { return impl_->critical; }
+const std::string& Dda2d::critical_time_step_source() const noexcept {
+  return impl_->critical_source;
+}
+double Dda2d::max_penetration() const noexcept { return impl_->max_penetration; }
+kernel::PredicateCounters Dda2d::predicate_counters() const noexcept { return impl_->counters; }
+
+}  // namespace rockcontact::dynamics

@@ -1,0 +1,160 @@
+#define BOOST_TEST_MODULE dynamics_dda2d_incline
+#include <boost/test/unit_test.hpp>
+
+// (4) A block sliding on a 30° incline (seed 000 §4.3, Table 4 row 4.3: kn 1e7 Pa, H 1 m,
+// kt 1e7 N/m, dt 1e-5 s, rho 2000, E 1 GPa), phi = 0, 10, 20°. The incline is a fixed
+// triangle; the slider a rigid L x h block (L = 1 m along the incline) with its base on the
+// incline face. Both are built from exact multiples of (cos 30°, -sin 30°) and (sin 30°,
+// cos 30°), so the base lies exactly on the face (an exact touch, zero overlap) unless sunk on
+// purpose. The displacement is the centroid's, along the incline, after 0.2 s.
+//
+// ## Reference: eq. 30 and when it holds
+// A rigid-plastic contact (the analytic model of eq. 30) slides at a = g (sin θ - cos θ tan φ)
+// from t = 0: l = a t² / 2. The contact of the paper differs in two elastic ways:
+//   * the normal penalty: starting from zero overlap the slider sinks into the incline and its
+//     normal force oscillates (undamped) between 0 and 2 m g cos θ at omega_n =
+//     sqrt(2 kn L / (H m)) = 100 rad/s for the square; while it slides, friction is
+//     tan φ |f_n|, whose time average is still tan φ m g cos θ, so l stays eq. 30 up to a
+//     bounded term tan φ g cos θ (1 - cos omega_n t) / omega_n² <= 6e-4 m;
+//   * the tangential penalty: a new contact starts in stick with d = 0 (§3.2.5), and the
+//     slider moves on the spring kt until kt |d_tan| reaches the Coulomb limit. From zero
+//     overlap, both the normal penetration (g cos θ t²/2) and the slip (g sin θ t²/2) start
+//     from zero, so the limit tan φ (2 kn L / H) g cos θ t²/2 beats the spring force
+//     kt g sin θ t²/2 only when tan φ > kt tan θ / (2 kn L / H) = tan 16.1°. phi = 0 and 10°
+//     therefore slide from the first steps and follow eq. 30 (measured errors 3e-14 and
+//     2.5e-4; bound 1 %), while phi = 20° sticks first (asserted below).
+// A stick phase on the spring leaves the slider faster than eq. 30 predicts: with the full
+// normal force N = m g cos θ from the start, the slider obeys m x'' = m g sin θ - kt x, so
+//   x = (g sin θ / w²) (1 - cos w t),  w = sqrt(kt / m),  until 1 - cos(w t_s) = r = tan φ / tan θ,
+// then slides at a from x_s = r g sin θ / w² with v_s = (g sin θ / w) sin(w t_s), i.e.
+//   l_ep(t) = x_s + v_s (t - t_s) + a (t - t_s)² / 2,
+// the closed form of the same elastic-plastic contact. For the 1 m square (w = 70.7 rad/s,
+// phi = 20°) v_s exceeds a t_s by 0.034 m/s and eq. 30 is short by 19 % at 0.2 s (the offset
+// decays only as 1/t: 4 % at 1 s); it tends to eq. 30 as kt -> infinity (v_s - a t_s ~ 1/w).
+// The zero-overlap phi = 20° run is reported against both references, not asserted: its
+// stick phase runs under an oscillating normal force, for which no closed form exists.
+//
+// ## Settled start: the elastic-plastic closed form
+// Sunk by the static overlap δ = m g cos θ H / (2 kn L) (where 2 kn L δ / H balances the
+// weight), the slider starts with the full normal force and no normal oscillation, which is
+// exactly the setting of l_ep. A 1 m x 0.5 m slider keeps the friction torque's rocking small
+// (the tilt moves the contact point by ~ tilt · h/2, a relative effect growing as h²: measured
+// 0.96 % for h = 1 m, 0.26 % for h = 0.5 m, 0.05 % for 0.25 m at phi = 20°). Bound: 1 %.
+//
+// ## Energy
+// kinetic + gravitational + contact work is conserved up to velocity Verlet's O((omega h)²)
+// error, omega h <= 1e-3 here: bound 1e-6 of the gravitational energy released (measured
+// ~2e-9). In the settled runs the slider slips at the limit tan φ m g cos θ over l - x_s
+// (x_s is the spring's elastic stretch, released when sliding starts), which is the friction
+// dissipation to the same 1 % (measured 0.01 % and 0.1 % for phi = 10°, 20°).
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "rockcontact/dynamics/dda2d.hpp"
+
+namespace {
+
+using namespace rockcontact::dynamics;
+
+constexpr double g = 9.81;
+constexpr double theta = std::numbers::pi / 6.0;
+const double cos30 = std::cos(theta), sin30 = std::sin(theta);
+constexpr double kn = 1.0e7, kt = 1.0e7, duration = 0.2;
+
+double tan_deg(double phi) { return std::tan(phi * std::numbers::pi / 180.0); }
+
+double eq30(double phi, double t) { return 0.5 * g * (sin30 - cos30 * tan_deg(phi)) * t * t; }
+
+// x_s above: the stretch of the tangential spring when sliding starts, m.
+double stick_stretch(double phi, double m) { return tan_deg(phi) / std::tan(theta) * g * sin30 * m / kt; }
+
+// l_ep(t) above, for a slider of mass m (kg/m) starting in stick under its full weight.
+double elastic_plastic(double phi, double m, double t) {
+  const double r = tan_deg(phi) / std::tan(theta);
+  if (r == 0.0) return eq30(phi, t);
+  const double w = std::sqrt(kt / m);
+  const double a = g * (sin30 - cos30 * tan_deg(phi));
+  const double ts = std::acos(1.0 - r) / w;
+  const double xs = stick_stretch(phi, m);
+  const double vs = g * sin30 / w * std::sin(w * ts);
+  return xs + vs * (t - ts) + 0.5 * a * (t - ts) * (t - ts);
+}
+
+struct Run {
+  double along = 0.0;  // centroid displacement along the incline, m
+  double mass = 0.0;   // kg/m
+  bool sliding_at_step_10 = false;
+  Energies energies;
+};
+
+Run slide(double phi, double height, double sink) {
+  const Vector2 t{cos30, -sin30}, n{sin30, cos30};
+  const auto at = [&](double along, double up) {
+    return Point2{along * t.x + up * n.x, along * t.y + up * n.y};
+  };
+  BlockSpec incline;
+  incline.id = "incline";
+  incline.fixed = true;
+  incline.vertices = {{-4.0 * cos30, -4.0 * sin30}, at(4.0, 0.0), at(-4.0, 0.0)};
+  BlockSpec slider;
+  slider.id = "slider";
+  slider.rigid = true;
+  slider.vertices = {at(-0.5, -sink), at(0.5, -sink), at(0.5, height - sink), at(-0.5, height - sink)};
+  ContactLaw law;
+  law.normal.kn = kn;
+  law.normal.H = 1.0;
+  law.friction = FrictionLaw{kt, phi};
+  DdaParams params;
+  params.dt = 1.0e-5;
+  params.gravity = {0.0, -g};
+  Dda2d sim({incline, slider}, law, params);
+  const Point2 c0 = sim.blocks()[1].centroid;
+  Run r;
+  r.mass = sim.blocks()[1].mass;
+  while (sim.steps() < 20000) {
+    sim.step();
+    if (sim.steps() == 10) r.sliding_at_step_10 = !sim.contacts().empty() && sim.contacts()[0].sliding;
+  }
+  const Point2 c = sim.blocks()[1].centroid;
+  r.along = (c.x - c0.x) * t.x + (c.y - c0.y) * t.y;
+  r.energies = sim.energies();
+  BOOST_TEST_MESSAGE("phi " << phi << "°, h " << height << " m, sunk " << sink << " m: l = " << r.along
+                     << " m; eq. 30 " << eq30(phi, duration) << " m (error "
+                     << r.along / eq30(phi, duration) - 1.0 << "), elastic-plastic "
+                     << elastic_plastic(phi, r.mass, duration) << " m (error "
+                     << r.along / elastic_plastic(phi, r.mass, duration) - 1.0
+                     << "); friction dissipated " << r.energies.friction_dissipated
+                     << " J/m, energy total " << r.energies.total() << " J/m of gravitational "
+                     << r.energies.gravitational);
+  BOOST_TEST(std::fabs(r.energies.total()) <= 1e-6 * std::fabs(r.energies.gravitational));
+  return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(slider_from_zero_overlap_follows_eq_30_below_the_stick_threshold) {
+  for (const double phi : {0.0, 10.0}) {
+    BOOST_TEST_CONTEXT("phi = " << phi) {
+      const Run r = slide(phi, 1.0, 0.0);
+      BOOST_TEST(r.sliding_at_step_10);
+      BOOST_TEST(std::fabs(r.along / eq30(phi, duration) - 1.0) <= 0.01);
+    }
+  }
+  const Run r = slide(20.0, 1.0, 0.0);
+  BOOST_TEST(!r.sliding_at_step_10);  // above tan 16.1°: the new contact sticks first
+}
+
+BOOST_AUTO_TEST_CASE(settled_slider_follows_the_elastic_plastic_closed_form) {
+  const double height = 0.5, mass = 2000.0 * height;
+  const double sink = mass * g * cos30 / (2.0 * kn * 1.0);
+  for (const double phi : {0.0, 10.0, 20.0}) {
+    BOOST_TEST_CONTEXT("phi = " << phi) {
+      const Run r = slide(phi, height, sink);
+      BOOST_TEST(std::fabs(r.along / elastic_plastic(phi, mass, duration) - 1.0) <= 0.01);
+      const double dissipated = tan_deg(phi) * mass * g * cos30 * (r.along - stick_stretch(phi, mass));
+      BOOST_TEST(std::fabs(r.energies.friction_dissipated - dissipated) <= 0.01 * dissipated + 1e-9);
+    }
+  }
+}
