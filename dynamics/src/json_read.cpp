@@ -59,8 +59,8 @@ void JsonReader::fail_expected(const std::string& path, std::string_view expecte
   fail(path, "expected " + std::string(expected) + ", got " + describe_json(got));
 }
 
-void JsonReader::check_object(const json& value, const std::string& path,
-                              std::string_view expected, std::span<const JsonField> fields) const {
+void JsonReader::check_object(const json& value, const std::string& path, std::string_view expected,
+                              std::span<const JsonField> fields) const {
   if (!value.is_object()) fail_expected(path, expected, value);
   std::string names;
   for (const JsonField& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);

@@ -37,13 +37,12 @@ constexpr JsonField time_fields[] = {
 constexpr JsonField material_fields[] = {
     {"density", true, "the density in kg/m³, a finite number > 0"},
     {"youngs_modulus", true, "Young's modulus in Pa, a finite number > 0"},
-    {"poisson_ratio", true, "Poisson's ratio, a number in [0, 0.5)"},
+    {"poisson_ratio", true, "Poisson's ratio, a number in (-1, 0.5)"},
 };
 constexpr JsonField contact_fields[] = {
     {"law", true, "\"potential\" (the distance-potential contact of seed 000)"},
     {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
-    {"H", true,
-     "the potential length scale H: a length in m > 0, \"mean_edge\" or \"inscribed\""},
+    {"H", true, "the potential length scale H: a length in m > 0, \"mean_edge\" or \"inscribed\""},
     {"kt", false, "the tangential penalty kt in N/m, a finite number > 0"},
     {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
     {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
@@ -100,16 +99,15 @@ class SceneParser {
 
   void time(const json& value, Scene& scene) const {
     reader_.check_object(value, "time", expected(scene_fields, "time"), time_fields);
-    scene.params.dt =
-        reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
-    scene.duration = reader_.positive(value.at("duration"), "time.duration",
-                                      expected(time_fields, "duration"));
+    scene.params.dt = reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
+    scene.duration =
+        reader_.positive(value.at("duration"), "time.duration", expected(time_fields, "duration"));
   }
 
   void physics(const json& document, Scene& scene) const {
     if (document.contains("gravity")) {
-      const auto g = reader_.numbers(document.at("gravity"), "gravity", 2,
-                                     expected(scene_fields, "gravity"));
+      const auto g =
+          reader_.numbers(document.at("gravity"), "gravity", 2, expected(scene_fields, "gravity"));
       scene.params.gravity = {g[0], g[1]};
     }
     if (document.contains("plane")) {
@@ -193,27 +191,33 @@ class SceneParser {
 
   void resolve_h(Scene& scene) const {
     switch (scene.h_rule) {
-      case HRule::given: return;
-      case HRule::mean_edge: scene.law.normal.H = mean_edge_length(scene.blocks); return;
-      case HRule::inscribed: scene.law.normal.H = smallest_inscribed_radius(scene.blocks); return;
+      case HRule::given:
+        return;
+      case HRule::mean_edge:
+        scene.law.normal.H = mean_edge_length(scene.blocks);
+        return;
+      case HRule::inscribed:
+        scene.law.normal.H = smallest_inscribed_radius(scene.blocks);
+        return;
     }
   }
 
  private:
   Material material(const json& value, const std::string& name) const {
     const std::string path = json_child("materials", name);
-    reader_.check_object(value, path, "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
+    reader_.check_object(value, path,
+                         "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
                          material_fields);
     Material m;
     m.density = reader_.positive(value.at("density"), json_child(path, "density"),
                                  expected(material_fields, "density"));
-    m.youngs_modulus = reader_.positive(value.at("youngs_modulus"),
-                                        json_child(path, "youngs_modulus"),
-                                        expected(material_fields, "youngs_modulus"));
+    m.youngs_modulus =
+        reader_.positive(value.at("youngs_modulus"), json_child(path, "youngs_modulus"),
+                         expected(material_fields, "youngs_modulus"));
     const std::string nu_path = json_child(path, "poisson_ratio");
     const std::string_view nu_expected = expected(material_fields, "poisson_ratio");
-    m.poisson_ratio = reader_.non_negative(value.at("poisson_ratio"), nu_path, nu_expected);
-    if (!(m.poisson_ratio < 0.5)) {
+    m.poisson_ratio = reader_.number(value.at("poisson_ratio"), nu_path, nu_expected);
+    if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
       reader_.fail_expected(nu_path, nu_expected, value.at("poisson_ratio"));
     }
     return m;
@@ -243,8 +247,8 @@ class SceneParser {
     FrictionLaw friction;
     friction.kt = reader_.positive(value.at("kt"), "contact.kt", expected(contact_fields, "kt"));
     const std::string_view phi_expected = expected(contact_fields, "friction_angle_deg");
-    friction.friction_angle_deg = reader_.non_negative(
-        value.at("friction_angle_deg"), "contact.friction_angle_deg", phi_expected);
+    friction.friction_angle_deg = reader_.non_negative(value.at("friction_angle_deg"),
+                                                       "contact.friction_angle_deg", phi_expected);
     if (!(friction.friction_angle_deg < 90.0)) {
       reader_.fail_expected("contact.friction_angle_deg", phi_expected,
                             value.at("friction_angle_deg"));
@@ -253,8 +257,8 @@ class SceneParser {
   }
 
   BlockSpec block(const json& value, const std::string& path) const {
-    reader_.check_object(value, path, "a block, an object {\"id\", \"material\", \"vertices\", ...}",
-                         block_fields);
+    reader_.check_object(
+        value, path, "a block, an object {\"id\", \"material\", \"vertices\", ...}", block_fields);
     BlockSpec spec;
     spec.id = reader_.string(value.at("id"), json_child(path, "id"), expected(block_fields, "id"));
     if (spec.id.empty()) {
@@ -303,8 +307,9 @@ class SceneParser {
     try {
       kernel::ConvexPolygon::make("block '" + id + "'", vertices, kernel::VertexOrder::require_ccw);
     } catch (const kernel::InvalidPolygon& e) {
-      reader_.fail(e.vertex() >= 0 ? json_element(path, static_cast<std::size_t>(e.vertex())) : path,
-                   e.what());
+      reader_.fail(
+          e.vertex() >= 0 ? json_element(path, static_cast<std::size_t>(e.vertex())) : path,
+          e.what());
     }
     return vertices;
   }
@@ -317,7 +322,8 @@ class SceneParser {
       const std::string& id = reader_.string(value[i], item_path, "a block id");
       const bool known = std::any_of(scene.blocks.begin(), scene.blocks.end(),
                                      [&](const BlockSpec& b) { return b.id == id; });
-      if (!known) reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
+      if (!known)
+        reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
       if (std::find(scene.track.begin(), scene.track.end(), id) != scene.track.end()) {
         reader_.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
       }
@@ -333,9 +339,12 @@ class SceneParser {
 
 std::string_view to_string(HRule rule) {
   switch (rule) {
-    case HRule::given: return "given";
-    case HRule::mean_edge: return "mean_edge";
-    case HRule::inscribed: return "inscribed";
+    case HRule::given:
+      return "given";
+    case HRule::mean_edge:
+      return "mean_edge";
+    case HRule::inscribed:
+      return "inscribed";
   }
   return "?";
 }
@@ -394,10 +403,13 @@ double inscribed_radius(std::span<const kernel::Point2> polygon) {
         const Line& b = lines[j];
         const Line& c = lines[k];
         // n . p + r = c for the three lines, by Cramer's rule.
-        const double det = a.nx * (b.ny - c.ny) - a.ny * (b.nx - c.nx) + (b.nx * c.ny - c.nx * b.ny);
+        const double det =
+            a.nx * (b.ny - c.ny) - a.ny * (b.nx - c.nx) + (b.nx * c.ny - c.nx * b.ny);
         if (det == 0.0) continue;
-        const double x = (a.c * (b.ny - c.ny) - a.ny * (b.c - c.c) + (b.c * c.ny - c.c * b.ny)) / det;
-        const double y = (a.nx * (b.c - c.c) - a.c * (b.nx - c.nx) + (b.nx * c.c - c.nx * b.c)) / det;
+        const double x =
+            (a.c * (b.ny - c.ny) - a.ny * (b.c - c.c) + (b.c * c.ny - c.c * b.ny)) / det;
+        const double y =
+            (a.nx * (b.c - c.c) - a.c * (b.nx - c.nx) + (b.nx * c.c - c.nx * b.c)) / det;
         const double r = a.c - a.nx * x - a.ny * y;
         if (!(r > best)) continue;
         const bool inside = std::all_of(lines.begin(), lines.end(), [&](const Line& l) {

@@ -4,8 +4,8 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -230,8 +230,7 @@ BOOST_AUTO_TEST_CASE(top_level_errors) {
   expect_error([](json& d) { d["time"]["duration"] = "1 s"; }, "time.duration",
                "a finite number > 0");
   expect_error([](json& d) { d["time"]["steps"] = 10; }, "time.steps", "unknown field");
-  expect_error([](json& d) { d["gravity"] = {0, -9.81, 0}; }, "gravity",
-               "two finite numbers");
+  expect_error([](json& d) { d["gravity"] = {0, -9.81, 0}; }, "gravity", "two finite numbers");
   expect_error([](json& d) { d["gravity"] = {0, "down"}; }, "gravity[1]", "a finite number");
   expect_error([](json& d) { d["plane"] = "axisymmetric"; }, "plane",
                R"(one of "stress", "strain")");
@@ -240,12 +239,14 @@ BOOST_AUTO_TEST_CASE(top_level_errors) {
 
 BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
   expect_error([](json& d) { d["materials"] = json::array(); }, "materials", "expected an object");
-  expect_error([](json& d) { d["materials"]["rock"]["cohesion"] = 1e5; },
-               "materials.rock.cohesion", "unknown field");
-  expect_error([](json& d) { d["materials"]["rock"].erase("density"); },
-               "materials.rock.density", "missing field");
+  expect_error([](json& d) { d["materials"]["rock"]["cohesion"] = 1e5; }, "materials.rock.cohesion",
+               "unknown field");
+  expect_error([](json& d) { d["materials"]["rock"].erase("density"); }, "materials.rock.density",
+               "missing field");
   expect_error([](json& d) { d["materials"]["rock"]["poisson_ratio"] = 0.5; },
-               "materials.rock.poisson_ratio", "a number in [0, 0.5)");
+               "materials.rock.poisson_ratio", "a number in (-1, 0.5)");
+  expect_error([](json& d) { d["materials"]["rock"]["poisson_ratio"] = -1; },
+               "materials.rock.poisson_ratio", "a number in (-1, 0.5)");
   expect_error([](json& d) { d["contact"]["law"] = "coulomb"; }, "contact.law",
                R"(expected "potential")");
   expect_error([](json& d) { d["contact"]["kn"] = 0; }, "contact.kn", "a finite number > 0");
@@ -278,30 +279,54 @@ BOOST_AUTO_TEST_CASE(block_errors) {
                R"(unknown material "granite"; expected one of the scene's materials (rock))");
   expect_error([](json& d) { d["blocks"][1]["fixed"] = "yes"; }, "blocks[1].fixed",
                "expected true or false");
-  expect_error([](json& d) { d["blocks"][1]["velocity"] = {1, 0}; }, "blocks[1].velocity",
-               "[vx, vy, omega]");
-  expect_error([](json& d) { d["blocks"][0]["velocity"] = {1, 0, 0}; }, "blocks[0].velocity",
-               "a fixed block does not move");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["velocity"] = {1, 0};
+      },
+      "blocks[1].velocity", "[vx, vy, omega]");
+  expect_error(
+      [](json& d) {
+        d["blocks"][0]["velocity"] = {1, 0, 0};
+      },
+      "blocks[0].velocity", "a fixed block does not move");
 }
 
 // Polygon errors come from the kernel's validation: the message names the block id and the
 // vertex, the path the vertex (or the polygon, for whole-polygon problems).
 BOOST_AUTO_TEST_CASE(polygon_errors_name_the_block) {
-  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {1.5, 1}, {2, 1}, {2, 2}}; },
-               "blocks[1].vertices[1]", "polygon block 'slider', vertex 1: is collinear");
-  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {1, 2}, {2, 2}, {2, 1}}; },
-               "blocks[1].vertices", "block 'slider'");
-  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}}; },
-               "blocks[1].vertices", "needs at least 3 vertices");
-  expect_error([](json& d) { d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}, {2, 1}, {1, 2}}; },
-               "blocks[1].vertices[2]", "repeats vertex 1");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["vertices"] = {{1, 1}, {1.5, 1}, {2, 1}, {2, 2}};
+      },
+      "blocks[1].vertices[1]", "polygon block 'slider', vertex 1: is collinear");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["vertices"] = {{1, 1}, {1, 2}, {2, 2}, {2, 1}};
+      },
+      "blocks[1].vertices", "block 'slider'");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}};
+      },
+      "blocks[1].vertices", "needs at least 3 vertices");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["vertices"] = {{1, 1}, {2, 1}, {2, 1}, {1, 2}};
+      },
+      "blocks[1].vertices[2]", "repeats vertex 1");
 }
 
 BOOST_AUTO_TEST_CASE(output_errors) {
-  expect_error([](json& d) { d["output"]["track"] = {"slider", "ghost"}; }, "output.track[1]",
-               R"(no block has the id "ghost")");
-  expect_error([](json& d) { d["output"]["track"] = {"slider", "slider"}; }, "output.track[1]",
-               "listed twice");
+  expect_error(
+      [](json& d) {
+        d["output"]["track"] = {"slider", "ghost"};
+      },
+      "output.track[1]", R"(no block has the id "ghost")");
+  expect_error(
+      [](json& d) {
+        d["output"]["track"] = {"slider", "slider"};
+      },
+      "output.track[1]", "listed twice");
   expect_error([](json& d) { d["output"]["track"] = "slider"; }, "output.track",
                "an array of block ids");
   expect_error([](json& d) { d["output"]["every"] = 0; }, "output.every", "an integer >= 1");
@@ -317,8 +342,9 @@ BOOST_AUTO_TEST_CASE(file_errors_name_the_file) {
 
   const auto collinear = file_error(scene_dir + "/collinear.json");
   BOOST_TEST_REQUIRE(collinear.has_value());
-  BOOST_TEST(contains(collinear->what(), "collinear.json: blocks[1].vertices[1]: polygon block "
-                                         "'slider', vertex 1: is collinear"));
+  BOOST_TEST(contains(collinear->what(),
+                      "collinear.json: blocks[1].vertices[1]: polygon block "
+                      "'slider', vertex 1: is collinear"));
 
   const auto three_d = file_error(scene_dir + "/three_d.json");
   BOOST_TEST_REQUIRE(three_d.has_value());

@@ -60,8 +60,8 @@ class JsonReader {
                                   const nlohmann::json& got) const;
 
   // `value` must be an object whose members are all among `fields`, the required ones present.
-  void check_object(const nlohmann::json& value, const std::string& path,
-                    std::string_view expected, std::span<const JsonField> fields) const;
+  void check_object(const nlohmann::json& value, const std::string& path, std::string_view expected,
+                    std::span<const JsonField> fields) const;
 
   double number(const nlohmann::json& value, const std::string& path,
                 std::string_view expected) const;  // any finite number

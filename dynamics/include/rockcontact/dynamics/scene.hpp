@@ -9,7 +9,7 @@
 //    "plane": "stress" | "strain"                         (optional, default stress)
 //    "damping": alpha 1/s >= 0                            (optional, default 0: eq. 5c off)
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
-//                         "poisson_ratio": 0 <= nu < 0.5}, ...},
+//                         "poisson_ratio": -1 < nu < 0.5}, ...},
 //    "contact": {"law": "potential", "kn": Pa > 0,
 //                "H": m > 0 | "mean_edge" | "inscribed",
 //                "kt": N/m > 0, "friction_angle_deg": 0 <= phi < 90   (both or neither;
@@ -26,9 +26,9 @@
 //
 // H, the potential's length scale (seed 000 eq. 14), is one number for the whole scene:
 //   number       as given;
-//   "mean_edge"  the mean edge length over every edge of every block (fixed ones included): the
-//                unified H of the paper's current approach (§5.1), which does not depend on
-//                which block is CP and which TP;
+//   "mean_edge"  the mean edge length over every edge of every block (fixed ones included): a
+//                unified H in the sense of §5.1, the same for every pair (the paper's own
+//                unified value there is the average of the longest and shortest edge);
 //   "inscribed"  the paper's "previous approach" (§5.1) used each block's inscribed-circle
 //                radius as its own H. Our contact law takes one H per scene, so this is the
 //                smallest inscribed radius over all blocks (fixed ones included): the stiffest
@@ -57,9 +57,9 @@ struct Scene {
   std::string source;       // the file it came from, for messages and the summary
   std::string description;  // free text, may be empty
   std::vector<BlockSpec> blocks;
-  ContactLaw law;           // law.normal.H already resolved from h_rule
+  ContactLaw law;  // law.normal.H already resolved from h_rule
   DdaParams params;
-  double duration = 0.0;    // s
+  double duration = 0.0;  // s
   HRule h_rule = HRule::given;
   std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
   std::size_t every = 100;         // record tracks and frames every `every` steps

@@ -1,0 +1,110 @@
+#pragma once
+// Running a scene and writing what `rockcontact run SCENE --out DIR` promises in DIR:
+//
+//   tracks.csv     header exactly "t,block,x,y,rotation,vx,vy,omega": for each tracked block
+//                  (scene order), every `every` steps, at t = 0 and at the final time: centroid
+//                  (m), rotation since the start (rad, CCW), centroid velocity (m/s) and angular
+//                  velocity (rad/s). Doubles in shortest round-trip form.
+//   frame_NNNN.vtp VTK XML PolyData, one polygon per block (scene order), written at the same
+//                  instants as the track rows; cell data: "block" (index in the scene),
+//                  "fixed" (0/1), "velocity" (vx, vy, 0) m/s, "omega" rad/s, "stress"
+//                  (sigma_x, sigma_y, tau_xy) Pa. Points carry z = 0. NNNN is zero-padded to
+//                  the width of the last frame number (at least 4 digits).
+//   frames.pvd     the ParaView collection of the frames with their times (open this one).
+//   final.svg      the final state, y up: blocks filled, fixed ones grey, tracked ones orange,
+//                  each polygon titled with its block id.
+//   summary.json   status, steps, times, energy terms at the start and the end, wall seconds,
+//                  predicate calls and exact fallbacks, largest penetration (see run_summary).
+//
+// If the engine stops the run (StabilityError after some steps), the outputs are still
+// completed with the last state and summary.json says "status": "stopped" and why.
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rockcontact/dynamics/dda2d.hpp"
+#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/kernel/predicate_stats.hpp"
+
+namespace rockcontact::dynamics {
+
+// An output file or directory that cannot be written; what() names it and says why.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes the files listed above into one directory (created if missing).
+class SceneRecorder {
+ public:
+  // Throws OutputError when the directory or tracks.csv cannot be created.
+  SceneRecorder(const Scene& scene, std::filesystem::path dir);
+
+  // Track rows and one frame of the state at `time` (s).
+  void record(double time, std::span<const BlockState> blocks);
+
+  // frames.pvd, final.svg of `blocks`, summary.json; throws OutputError if one cannot be written.
+  void finish(std::span<const BlockState> blocks, const nlohmann::ordered_json& summary);
+
+  std::size_t frames() const noexcept { return frames_.size(); }
+
+ private:
+  struct Frame {
+    double time;
+    std::string file;
+  };
+
+  std::filesystem::path dir_;
+  std::vector<std::string> track_;
+  std::size_t frame_digits_;
+  std::ofstream tracks_;
+  std::vector<Frame> frames_;
+};
+
+struct RunReport {
+  std::string status = "completed";       // or "stopped" (the engine's StabilityError)
+  std::string error;                      // the engine's message when stopped
+  std::size_t steps = 0;                  // steps taken
+  double time = 0.0;                      // s, simulated time reached
+  Energies initial;                       // J/m, at t = 0
+  Energies final;                         // J/m, at `time`
+  double max_penetration = 0.0;           // m, largest minimum-translation distance seen
+  double critical_time_step = 0.0;        // s, the engine's estimate 2 / omega_max (may be +inf)
+  std::string critical_time_step_source;  // what set it (the engine's words)
+  double simulation_seconds = 0.0;        // wall, engine construction and steps (observer included)
+  double output_seconds = 0.0;            // wall, writing files
+  kernel::PredicateCounters predicates;   // spent by this simulation
+  std::size_t frames = 0;                 // VTK frames written
+};
+
+// The summary.json document of a run (keys in this order): scene, description, status,
+// [error], steps, time, dt, critical_time_step (null when unlimited),
+// critical_time_step_source, H, H_rule, wall_seconds, simulation_seconds,
+// output_seconds, energy {start, end} each {kinetic, gravitational, strain, contact,
+// friction_dissipated, damping_dissipated, total}, predicates {calls, fallbacks},
+// max_penetration, blocks [ids in frame order], tracked [ids], frames.
+nlohmann::ordered_json run_summary(const Scene& scene, const RunReport& report);
+
+struct RunOptions {
+  std::filesystem::path out_dir;  // empty: no files (validation measures through `observer`)
+  // Called with the simulation at t = 0 and after every step.
+  std::function<void(const Dda2d&)> observer;
+  // Called after every step with (steps done, steps in the run).
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+// Builds the engine from the scene, takes step_count(scene) steps and records. A run the
+// engine stops midway returns with status "stopped" and the engine's message in `error`.
+// Throws what the engine's constructor throws (StabilityError for a dt above its limit,
+// std::invalid_argument for a parameter it refuses) and OutputError.
+RunReport run_scene(const Scene& scene, const RunOptions& options = {});
+
+}  // namespace rockcontact::dynamics

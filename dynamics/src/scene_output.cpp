@@ -1,0 +1,340 @@
+#include "rockcontact/dynamics/scene_output.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <system_error>
+#include <utility>
+
+namespace rockcontact::dynamics {
+
+namespace {
+
+using nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+// Shortest text that reads back as the same double ("0.1", "1e-05", "-3.25").
+std::string number(double value) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), end);
+}
+
+// Pixel coordinates: two decimals are far below what a viewer shows.
+std::string pixel(double value) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                       std::chars_format::fixed, 2);
+  return std::string(buffer.data(), end);
+}
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string xml_escape(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::ofstream open_for_writing(const fs::path& file) {
+  std::ofstream stream(file, std::ios::binary);
+  if (!stream) {
+    throw OutputError("cannot write " + file.string() + ": " + std::strerror(errno));
+  }
+  return stream;
+}
+
+void close_checked(std::ofstream& stream, const fs::path& file) {
+  stream.close();
+  if (!stream) throw OutputError("cannot write " + file.string() + ": write failed");
+}
+
+void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
+  std::size_t points = 0;
+  for (const BlockState& b : blocks) points += b.vertices.size();
+  std::ofstream out = open_for_writing(file);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+      << "NumberOfStrips=\"0\" NumberOfPolys=\"" << blocks.size() << "\">\n"
+      << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    for (const kernel::Point2& p : b.vertices) {
+      out << "          " << number(p.x) << ' ' << number(p.y) << " 0\n";
+    }
+  }
+  out << "        </DataArray>\n      </Points>\n      <Polys>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  std::size_t next = 0;
+  for (const BlockState& b : blocks) {
+    out << "         ";
+    for (std::size_t i = 0; i < b.vertices.size(); ++i) out << ' ' << next++;
+    out << '\n';
+  }
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  std::size_t offset = 0;
+  for (const BlockState& b : blocks) out << ' ' << (offset += b.vertices.size());
+  out << "\n        </DataArray>\n      </Polys>\n"
+      << "      <CellData Scalars=\"block\" Vectors=\"velocity\">\n"
+      << "        <DataArray type=\"Int32\" Name=\"block\" format=\"ascii\">\n         ";
+  for (std::size_t i = 0; i < blocks.size(); ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"UInt8\" Name=\"fixed\" format=\"ascii\">\n         ";
+  for (const BlockState& b : blocks) out << ' ' << (b.fixed ? 1 : 0);
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    out << "          " << number(b.velocity[0]) << ' ' << number(b.velocity[1]) << " 0\n";
+  }
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"omega\" format=\"ascii\">\n         ";
+  for (const BlockState& b : blocks) out << ' ' << number(b.velocity[2]);
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    out << "          " << number(b.stress[0]) << ' ' << number(b.stress[1]) << ' '
+        << number(b.stress[2]) << '\n';
+  }
+  out << "        </DataArray>\n      </CellData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  close_checked(out, file);
+}
+
+void write_svg(const fs::path& file, std::span<const BlockState> blocks,
+               std::span<const std::string> tracked, double time) {
+  constexpr double width_px = 800.0;
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
+  double xmax = -xmin, ymax = -xmin;
+  for (const BlockState& b : blocks) {
+    for (const kernel::Point2& p : b.vertices) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+      ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+    }
+  }
+  if (!(xmin < xmax)) xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0;  // nothing finite to show
+  const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
+  const double scale = width_px / (xmax - xmin + 2.0 * margin);
+  const double height_px = (ymax - ymin + 2.0 * margin) * scale;
+  std::ofstream out = open_for_writing(file);
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
+      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
+      << "\">\n"
+      << "  <title>t = " << number(time) << " s</title>\n"
+      << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  for (const BlockState& b : blocks) {
+    const bool finite = std::all_of(b.vertices.begin(), b.vertices.end(), [](const auto& p) {
+      return std::isfinite(p.x) && std::isfinite(p.y);
+    });
+    if (!finite) continue;
+    const bool is_tracked = std::find(tracked.begin(), tracked.end(), b.id) != tracked.end();
+    const char* style = b.fixed      ? "fill=\"#bdbdbd\" stroke=\"#616161\" stroke-width=\"1\""
+                        : is_tracked ? "fill=\"#f28e2b\" stroke=\"#7f3b08\" stroke-width=\"2\""
+                                     : "fill=\"#9ecae1\" stroke=\"#2171b5\" stroke-width=\"1\"";
+    out << "  <polygon " << style << " points=\"";
+    for (std::size_t i = 0; i < b.vertices.size(); ++i) {
+      const kernel::Point2& p = b.vertices[i];
+      out << (i == 0 ? "" : " ") << pixel((p.x - xmin + margin) * scale) << ','
+          << pixel((ymax + margin - p.y) * scale);
+    }
+    out << "\"><title>" << xml_escape(b.id) << "</title></polygon>\n";
+  }
+  out << "</svg>\n";
+  close_checked(out, file);
+}
+
+ordered_json energies_json(const Energies& e) {
+  ordered_json out;
+  out["kinetic"] = e.kinetic;
+  out["gravitational"] = e.gravitational;
+  out["strain"] = e.strain;
+  out["contact"] = e.contact;
+  out["friction_dissipated"] = e.friction_dissipated;
+  out["damping_dissipated"] = e.damping_dissipated;
+  out["total"] = e.total();
+  return out;
+}
+
+std::size_t decimal_digits(std::size_t value) {
+  std::size_t digits = 1;
+  while (value >= 10) value /= 10, ++digits;
+  return digits;
+}
+
+}  // namespace
+
+SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
+    : dir_(std::move(dir)), track_(scene.track) {
+  const std::size_t steps = step_count(scene);
+  const std::size_t last_frame = steps / scene.every + (steps % scene.every == 0 ? 0 : 1);
+  frame_digits_ = std::max<std::size_t>(4, decimal_digits(last_frame));
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
+  tracks_ = open_for_writing(dir_ / "tracks.csv");
+  tracks_ << "t,block,x,y,rotation,vx,vy,omega\n";
+}
+
+void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
+  for (const std::string& id : track_) {
+    const auto it =
+        std::find_if(blocks.begin(), blocks.end(), [&](const BlockState& b) { return b.id == id; });
+    if (it == blocks.end()) continue;
+    tracks_ << number(time) << ',' << csv_field(id) << ',' << number(it->centroid.x) << ','
+            << number(it->centroid.y) << ',' << number(it->rotation) << ','
+            << number(it->velocity[0]) << ',' << number(it->velocity[1]) << ','
+            << number(it->velocity[2]) << '\n';
+  }
+  if (!tracks_) throw OutputError("cannot write " + (dir_ / "tracks.csv").string());
+  std::string index = std::to_string(frames_.size());
+  index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
+  const std::string name = "frame_" + index + ".vtp";
+  write_vtp(dir_ / name, blocks);
+  frames_.push_back({time, name});
+}
+
+void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_json& summary) {
+  close_checked(tracks_, dir_ / "tracks.csv");
+  const fs::path pvd = dir_ / "frames.pvd";
+  std::ofstream out = open_for_writing(pvd);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  for (const Frame& f : frames_) {
+    out << "    <DataSet timestep=\"" << number(f.time) << "\" group=\"\" part=\"0\" file=\""
+        << f.file << "\"/>\n";
+  }
+  out << "  </Collection>\n</VTKFile>\n";
+  close_checked(out, pvd);
+  write_svg(dir_ / "final.svg", blocks, track_, frames_.empty() ? 0.0 : frames_.back().time);
+  const fs::path summary_file = dir_ / "summary.json";
+  std::ofstream summary_out = open_for_writing(summary_file);
+  summary_out << summary.dump(2) << '\n';
+  close_checked(summary_out, summary_file);
+}
+
+ordered_json run_summary(const Scene& scene, const RunReport& report) {
+  ordered_json out;
+  out["scene"] = scene.source;
+  out["description"] = scene.description;
+  out["status"] = report.status;
+  if (!report.error.empty()) out["error"] = report.error;
+  out["steps"] = report.steps;
+  out["time"] = report.time;
+  out["dt"] = scene.params.dt;
+  out["critical_time_step"] = std::isfinite(report.critical_time_step)
+                                  ? ordered_json(report.critical_time_step)
+                                  : ordered_json(nullptr);
+  out["critical_time_step_source"] = report.critical_time_step_source;
+  out["H"] = scene.law.normal.H;
+  out["H_rule"] = to_string(scene.h_rule);
+  out["wall_seconds"] = report.simulation_seconds + report.output_seconds;
+  out["simulation_seconds"] = report.simulation_seconds;
+  out["output_seconds"] = report.output_seconds;
+  out["energy"] = {{"start", energies_json(report.initial)}, {"end", energies_json(report.final)}};
+  out["predicates"] = {{"calls", report.predicates.total_calls()},
+                       {"fallbacks", report.predicates.total_fallbacks()}};
+  out["max_penetration"] = report.max_penetration;
+  ordered_json ids = ordered_json::array();
+  for (const BlockSpec& b : scene.blocks) ids.push_back(b.id);
+  out["blocks"] = std::move(ids);
+  out["tracked"] = scene.track;
+  out["frames"] = report.frames;
+  return out;
+}
+
+RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  clock::duration output_time{};
+  RunReport report;
+  Dda2d simulation(scene.blocks, scene.law, scene.params);
+  std::optional<SceneRecorder> recorder;
+  const auto timed = [&](auto&& write) {
+    const auto t0 = clock::now();
+    write();
+    output_time += clock::now() - t0;
+  };
+  const auto record = [&] {
+    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks()); });
+  };
+  // Fills the report from the simulation as it stands and completes the files.
+  const auto conclude = [&] {
+    report.steps = simulation.steps();
+    report.time = simulation.time();
+    report.final = simulation.energies();
+    report.max_penetration = simulation.max_penetration();
+    report.critical_time_step = simulation.critical_time_step();
+    report.critical_time_step_source = simulation.critical_time_step_source();
+    report.predicates = simulation.predicate_counters();
+    if (!recorder) {
+      report.simulation_seconds = std::chrono::duration<double>(clock::now() - start).count();
+      return;
+    }
+    report.frames = recorder->frames();
+    const auto t0 = clock::now();
+    report.simulation_seconds = std::chrono::duration<double>(t0 - start - output_time).count();
+    report.output_seconds = std::chrono::duration<double>(output_time).count();
+    recorder->finish(simulation.blocks(), run_summary(scene, report));
+    report.output_seconds += std::chrono::duration<double>(clock::now() - t0).count();
+  };
+
+  if (!options.out_dir.empty()) timed([&] { recorder.emplace(scene, options.out_dir); });
+  report.initial = simulation.energies();
+  record();
+  if (options.observer) options.observer(simulation);
+  const std::size_t total = step_count(scene);
+  try {
+    for (std::size_t s = 1; s <= total; ++s) {
+      simulation.step();
+      if (options.observer) options.observer(simulation);
+      if (s % scene.every == 0 || s == total) record();
+      if (options.progress) options.progress(s, total);
+    }
+  } catch (const StabilityError& e) {
+    report.status = "stopped";
+    report.error = e.what();
+  }
+  conclude();
+  return report;
+}
+
+}  // namespace rockcontact::dynamics

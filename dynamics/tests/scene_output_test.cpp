@@ -1,0 +1,309 @@
+#define BOOST_TEST_MODULE scene_output
+#include "rockcontact/dynamics/scene_output.hpp"
+
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rockcontact/dynamics/scene.hpp"
+
+namespace dyn = rockcontact::dynamics;
+namespace fs = std::filesystem;
+namespace pt = boost::property_tree;
+using nlohmann::json;
+
+namespace {
+
+const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
+
+// A fresh directory under the test's working directory.
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::current_path() / "scene_output_test" / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  for (std::string part; std::getline(stream, part, separator);) parts.push_back(part);
+  return parts;
+}
+
+struct TrackRow {
+  double t, x, y, rotation, vx, vy, omega;
+  std::string block;
+};
+
+// tracks.csv: checks the header, returns the rows.
+std::vector<TrackRow> read_tracks(const fs::path& file) {
+  const std::vector<std::string> lines = split(read_text(file), '\n');
+  BOOST_TEST_REQUIRE(!lines.empty());
+  BOOST_TEST(lines[0] == "t,block,x,y,rotation,vx,vy,omega");
+  std::vector<TrackRow> rows;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> f = split(lines[i], ',');
+    BOOST_TEST_REQUIRE(f.size() == 8u);
+    rows.push_back({std::stod(f[0]), std::stod(f[2]), std::stod(f[3]), std::stod(f[4]),
+                    std::stod(f[5]), std::stod(f[6]), std::stod(f[7]), f[1]});
+  }
+  return rows;
+}
+
+// Parses an XML file (throws on malformed XML, which fails the test case).
+pt::ptree read_xml(const fs::path& file) {
+  pt::ptree tree;
+  pt::read_xml(file.string(), tree);
+  return tree;
+}
+
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The numbers of a VTK DataArray's text.
+std::vector<double> numbers(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<double> values;
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
+// The DataArray called `name` under `parent` (Points, Polys or CellData).
+const pt::ptree& data_array(const pt::ptree& parent, const std::string& name) {
+  for (const auto& [tag, child] : parent) {
+    if (tag == "DataArray" && child.get<std::string>("<xmlattr>.Name", "") == name) return child;
+  }
+  BOOST_FAIL("no DataArray " << name);
+  return parent;
+}
+
+// Checks one frame: well-formed XML, one polygon per block with the right number of points,
+// connectivity and offsets consistent, cell data per block.
+void check_frame(const fs::path& file, const std::vector<std::size_t>& vertex_counts) {
+  const pt::ptree tree = read_xml(file);
+  BOOST_TEST(tree.get<std::string>("VTKFile.<xmlattr>.type") == "PolyData");
+  const pt::ptree& piece = tree.get_child("VTKFile.PolyData.Piece");
+  std::size_t points = 0;
+  for (const std::size_t n : vertex_counts) points += n;
+  BOOST_TEST(piece.get<std::size_t>("<xmlattr>.NumberOfPolys") == vertex_counts.size());
+  BOOST_TEST(piece.get<std::size_t>("<xmlattr>.NumberOfPoints") == points);
+  BOOST_TEST(numbers(data_array(piece.get_child("Points"), "Points").data()).size() == 3 * points);
+  const auto connectivity = numbers(data_array(piece.get_child("Polys"), "connectivity").data());
+  const auto offsets = numbers(data_array(piece.get_child("Polys"), "offsets").data());
+  BOOST_TEST(connectivity.size() == points);
+  BOOST_TEST_REQUIRE(offsets.size() == vertex_counts.size());
+  std::size_t end = 0;
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    end += vertex_counts[i];
+    BOOST_TEST(offsets[i] == static_cast<double>(end));
+  }
+  const pt::ptree& cells = piece.get_child("CellData");
+  BOOST_TEST(numbers(data_array(cells, "block").data()).size() == vertex_counts.size());
+  BOOST_TEST(numbers(data_array(cells, "velocity").data()).size() == 3 * vertex_counts.size());
+}
+
+// frames.pvd: the frame files in order with their times.
+std::vector<std::pair<double, std::string>> read_pvd(const fs::path& file) {
+  const pt::ptree tree = read_xml(file);
+  BOOST_TEST(tree.get<std::string>("VTKFile.<xmlattr>.type") == "Collection");
+  std::vector<std::pair<double, std::string>> frames;
+  for (const auto& [tag, child] : tree.get_child("VTKFile.Collection")) {
+    if (tag != "DataSet") continue;
+    frames.emplace_back(child.get<double>("<xmlattr>.timestep"),
+                        child.get<std::string>("<xmlattr>.file"));
+  }
+  return frames;
+}
+
+dyn::BlockState square_state(const std::string& id, double x, double y, bool fixed) {
+  dyn::BlockState b;
+  b.id = id;
+  b.vertices = {{x, y}, {x + 1, y}, {x + 1, y + 1}, {x, y + 1}};
+  b.centroid = {x + 0.5, y + 0.5};
+  b.velocity = {0.25, -0.5, 0.125, 0, 0, 0};
+  b.fixed = fixed;
+  b.area = 1.0;
+  b.mass = 2000.0;
+  return b;
+}
+
+// A single rigid 1 m square in free fall (gravity only, no other block, so no contact; rigid,
+// so no strain mode limits the 1 ms step).
+json free_fall_scene(int every) {
+  json scene = json::parse(R"({"dimension": 2,
+   "time": {"dt": 1e-3, "duration": 0.0505},
+   "gravity": [0, -9.81],
+   "materials": {"rock": {"density": 2000, "youngs_modulus": 1e9, "poisson_ratio": 0.25}},
+   "contact": {"law": "potential", "kn": 1e7, "H": 1.0},
+   "blocks": [{"id": "stone", "material": "rock", "vertices": [[2,10],[3,10],[3,11],[2,11]],
+               "velocity": [0.5, 0.0, 0.0], "rigid": true}]})");
+  scene["output"] = {{"every", every}};
+  return scene;
+}
+
+}  // namespace
+
+// The recorder alone, on block states built by hand: file layout and formats.
+BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
+  const fs::path dir = fresh_dir("recorder");
+  dyn::Scene scene =
+      dyn::parse_scene(json::parse(R"({"dimension": 2, "time": {"dt": 0.1, "duration": 0.2},
+        "materials": {"rock": {"density": 2000, "youngs_modulus": 1e9, "poisson_ratio": 0.25}},
+        "contact": {"law": "potential", "kn": 1e7, "H": 1.0},
+        "blocks": [{"id": "base", "material": "rock", "vertices": [[0,0],[4,0],[4,1],[0,1]],
+                    "fixed": true},
+                   {"id": "a, \"quoted\"", "material": "rock",
+                    "vertices": [[1,1],[2,1],[2,2],[1,2]]},
+                   {"id": "b<c>", "material": "rock", "vertices": [[3,1],[4,1],[3.5,2]]}],
+        "output": {"every": 1}})"),
+                       "recorder.json");
+  std::vector<dyn::BlockState> blocks{square_state("base", 0, 0, true),
+                                      square_state("a, \"quoted\"", 1, 1, false),
+                                      square_state("b<c>", 3, 1, false)};
+  blocks[0].vertices = {{0, 0}, {4, 0}, {4, 1}, {0, 1}};
+  blocks[2].vertices = {{3, 1}, {4, 1}, {3.5, 2}};
+  {
+    dyn::SceneRecorder recorder(scene, dir);
+    recorder.record(0.0, blocks);
+    recorder.record(0.1, blocks);
+    recorder.record(0.2, blocks);
+    BOOST_TEST(recorder.frames() == 3u);
+    recorder.finish(blocks, json::object({{"status", "completed"}}));
+  }
+  const std::string csv = read_text(dir / "tracks.csv");
+  BOOST_TEST(csv.substr(0, csv.find('\n')) == "t,block,x,y,rotation,vx,vy,omega");
+  // Two tracked blocks (the ones not fixed) at three instants; the id with a comma is quoted.
+  BOOST_TEST(count(csv, "\n") == 7u);
+  BOOST_TEST(count(csv, "0.1,\"a, \"\"quoted\"\"\",1.5,1.5,0,0.25,-0.5,0.125\n") == 1u);
+  BOOST_TEST(count(csv, "0.2,b<c>,3.5,1.5,0,0.25,-0.5,0.125\n") == 1u);
+
+  const auto frames = read_pvd(dir / "frames.pvd");
+  BOOST_TEST_REQUIRE(frames.size() == 3u);
+  BOOST_TEST(frames[0].second == "frame_0000.vtp");
+  BOOST_TEST(frames[2].second == "frame_0002.vtp");
+  BOOST_TEST(frames[1].first == 0.1);
+  for (const auto& [t, file] : frames) check_frame(dir / file, {4, 4, 3});
+
+  const std::string svg = read_text(dir / "final.svg");
+  BOOST_TEST(count(svg, "<polygon") == 3u);
+  BOOST_TEST(count(svg, "fill=\"#bdbdbd\"") == 1u);  // the fixed base, grey
+  BOOST_TEST(count(svg, "fill=\"#f28e2b\"") == 2u);  // the tracked blocks, highlighted
+  BOOST_TEST(count(svg, "<title>b&lt;c&gt;</title>") == 1u);
+  BOOST_CHECK_NO_THROW(read_xml(dir / "final.svg"));
+
+  BOOST_TEST(json::parse(read_text(dir / "summary.json")).at("status") == "completed");
+}
+
+BOOST_AUTO_TEST_CASE(unwritable_directory_is_an_output_error) {
+  const fs::path file = fresh_dir("blocker");
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << "a file where the directory should be";
+  const dyn::Scene scene = dyn::read_scene_file(scene_dir + "/two_blocks.json");
+  BOOST_CHECK_THROW(dyn::SceneRecorder(scene, file / "out"), dyn::OutputError);
+}
+
+// Velocity Verlet integrates a constant force exactly: y(t) = y0 - g t² / 2, x(t) = x0 + vx t,
+// vy = -g t, for every recorded row (every 10 steps of 1 ms, plus the final time 0.051 s:
+// 0.0505 s rounds up to 51 steps). What is left is rounding: the centroid is recomputed from
+// vertices near 10 m (ulp 1.8e-15) after each of 51 steps, so 1e-12 m is generous.
+BOOST_AUTO_TEST_CASE(free_fall_rows_follow_the_analytic_parabola) {
+  const fs::path dir = fresh_dir("free_fall");
+  const dyn::Scene scene = dyn::parse_scene(free_fall_scene(10), "free_fall.json");
+  dyn::RunOptions options;
+  options.out_dir = dir;
+  const dyn::RunReport report = dyn::run_scene(scene, options);
+  BOOST_TEST(report.steps == 51u);
+  BOOST_TEST(report.status == "completed");
+  const std::vector<TrackRow> rows = read_tracks(dir / "tracks.csv");
+  const std::vector<double> times{0.0, 0.01, 0.02, 0.03, 0.04, 0.05, 0.051};
+  BOOST_TEST_REQUIRE(rows.size() == times.size());
+  const double g = 9.81, x0 = 2.5, y0 = 10.5, vx = 0.5;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const TrackRow& r = rows[i];
+    BOOST_TEST_CONTEXT("row " << i << " t = " << r.t) {
+      BOOST_TEST(r.block == "stone");
+      BOOST_TEST(std::abs(r.t - times[i]) < 1e-15);
+      BOOST_TEST(std::abs(r.y - (y0 - 0.5 * g * r.t * r.t)) < 1e-12);
+      BOOST_TEST(std::abs(r.x - (x0 + vx * r.t)) < 1e-12);
+      BOOST_TEST(std::abs(r.vy - (-g * r.t)) < 1e-12);
+      BOOST_TEST(std::abs(r.vx - vx) < 1e-12);
+      BOOST_TEST(r.rotation == 0.0);
+      BOOST_TEST(r.omega == 0.0);
+    }
+  }
+  const auto frames = read_pvd(dir / "frames.pvd");
+  BOOST_TEST_REQUIRE(frames.size() == times.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    BOOST_TEST(std::abs(frames[i].first - times[i]) < 1e-15);
+    check_frame(dir / frames[i].second, {4});
+  }
+  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 1u);
+}
+
+// The contract scene for a few steps: every file, and a summary that matches the report.
+BOOST_AUTO_TEST_CASE(two_block_run_writes_the_contract_outputs) {
+  const fs::path dir = fresh_dir("two_blocks");
+  dyn::Scene scene = dyn::read_scene_file(scene_dir + "/two_blocks.json");
+  dyn::RunOptions options;
+  options.out_dir = dir;
+  std::size_t progress_calls = 0, observed = 0;
+  options.progress = [&](std::size_t done, std::size_t total) {
+    ++progress_calls;
+    BOOST_TEST(done <= total);
+  };
+  options.observer = [&](const dyn::Dda2d&) { ++observed; };
+  const dyn::RunReport report = dyn::run_scene(scene, options);
+  BOOST_TEST(report.steps == 100u);
+  BOOST_TEST(progress_calls == 100u);
+  BOOST_TEST(observed == 101u);  // t = 0 and after every step
+
+  const std::vector<TrackRow> rows = read_tracks(dir / "tracks.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 5u);  // every 25 steps of 100, t = 0 included
+  BOOST_TEST(rows.front().t == 0.0);
+  BOOST_TEST(std::abs(rows.back().t - 0.01) < 1e-15);
+  BOOST_TEST(rows.front().x == 1.5);
+  BOOST_TEST(rows.front().y == 1.5);
+  for (const TrackRow& r : rows) BOOST_TEST(r.block == "slider");
+
+  const auto frames = read_pvd(dir / "frames.pvd");
+  BOOST_TEST(frames.size() == 5u);
+  for (const auto& [t, file] : frames) check_frame(dir / file, {4, 4});
+  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 2u);
+
+  const json summary = json::parse(read_text(dir / "summary.json"));
+  BOOST_TEST(summary.at("status") == "completed");
+  BOOST_TEST(summary.at("steps") == 100);
+  BOOST_TEST(summary.at("frames") == 5);
+  BOOST_TEST(summary.at("time").get<double>() == report.time);
+  BOOST_TEST(summary.at("energy").at("start").at("total").get<double>() == report.initial.total());
+  BOOST_TEST(summary.at("energy").at("end").at("total").get<double>() == report.final.total());
+  BOOST_TEST(summary.at("max_penetration").get<double>() == report.max_penetration);
+  BOOST_TEST(summary.at("predicates").at("calls").get<std::uint64_t>() ==
+             report.predicates.total_calls());
+  BOOST_TEST(summary.at("blocks") == json::array({"base", "slider"}));
+  BOOST_TEST(summary.at("tracked") == json::array({"slider"}));
+  BOOST_TEST(summary.at("wall_seconds").get<double>() >= 0.0);
+}
+
+// The engine refuses a time step above its stability limit before anything is written.
+BOOST_AUTO_TEST_CASE(unstable_time_step_is_refused) {
+  const dyn::Scene scene = dyn::read_scene_file(scene_dir + "/unstable.json");
+  BOOST_CHECK_THROW(dyn::run_scene(scene), dyn::StabilityError);
+}
