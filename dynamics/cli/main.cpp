@@ -3,20 +3,31 @@
 // command line is parsed; the callback's return value is the exit status.
 //
 // Exit status: 0 success (pairs with an invalid polygon are results, not failures), 2 malformed
-// input, bad flags or an output file that cannot be written, 1 an unexpected internal error.
+// input, bad flags, an output file that cannot be written or a scene the engine refuses or
+// stops (StabilityError), 3 a `validate` check that failed, 1 an unexpected internal error.
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/dynamics/pairs_io.hpp"
 #include "rockcontact/dynamics/pairs_summary.hpp"
+#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/dynamics/scene_output.hpp"
+#include "rockcontact/dynamics/validation.hpp"
 #include "rockcontact/kernel/demarcation.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 
@@ -28,6 +39,7 @@ namespace kernel = rockcontact::kernel;
 constexpr int exit_ok = 0;
 constexpr int exit_internal_error = 1;
 constexpr int exit_bad_input = 2;
+constexpr int exit_validation_failed = 3;
 
 struct PairsOptions {
   std::string input;
@@ -83,6 +95,137 @@ void add_pairs(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_pairs(*options); });
 }
 
+struct RunArgs {
+  std::string scene;
+  std::string out;
+};
+
+bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
+
+// A one-line progress bar on stderr, drawn only when stderr is a terminal; redrawn when the
+// shown per mille changes.
+class ProgressBar {
+ public:
+  ProgressBar() : enabled_(stderr_is_terminal()), start_(std::chrono::steady_clock::now()) {}
+
+  void update(std::size_t done, std::size_t total) {
+    if (!enabled_ || total == 0) return;
+    const std::size_t permille = done * 1000 / total;
+    if (permille == shown_) return;
+    shown_ = permille;
+    constexpr std::size_t width = 40;
+    const std::size_t filled = permille * width / 1000;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
+              << std::fixed << std::setprecision(1) << std::setw(5)
+              << static_cast<double>(permille) / 10.0 << "%  step " << done << '/' << total << "  "
+              << elapsed << " s" << std::defaultfloat << std::flush;
+    drawn_ = true;
+  }
+
+  // Ends the bar's line, if one was drawn.
+  void finish() {
+    if (drawn_) std::cerr << '\n';
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+  std::size_t shown_ = static_cast<std::size_t>(-1);
+  bool drawn_ = false;
+};
+
+int run_run(const RunArgs& options) {
+  const dyn::Scene scene = dyn::read_scene_file(options.scene);
+  ProgressBar bar;
+  dyn::RunOptions run_options;
+  run_options.out_dir = options.out;
+  run_options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  dyn::RunReport report;
+  try {
+    report = dyn::run_scene(scene, run_options);
+  } catch (const std::invalid_argument& e) {  // a parameter or polygon the engine refuses
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const dyn::StabilityError& e) {  // a time step above the engine's limit
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  bar.finish();
+  if (report.status != "completed") {
+    std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << report.time
+              << " s: " << report.error << "\nrockcontact: the outputs up to the stop are in "
+              << options.out << '\n';
+    return exit_bad_input;
+  }
+  std::cout << "scene: " << scene.source << '\n'
+            << "steps: " << report.steps << " (t = " << report.time << " s), wall "
+            << report.simulation_seconds + report.output_seconds << " s (simulation "
+            << report.simulation_seconds << " s)\n"
+            << "energy: total " << report.initial.total() << " J/m at the start, "
+            << report.final.total() << " J/m at the end\n"
+            << "predicates: " << report.predicates.total_calls() << " calls, "
+            << report.predicates.total_fallbacks() << " exact fallbacks; largest penetration "
+            << report.max_penetration << " m\n"
+            << "outputs: " << options.out << " (tracks.csv, " << report.frames
+            << " frames in frames.pvd, final.svg, summary.json)\n";
+  return exit_ok;
+}
+
+void add_run(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<RunArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "run",
+      "Run a scene (2D DDA with potential contact) and write its tracks, frames and summary");
+  sub->add_option("scene", options->scene, "Scene JSON (see dynamics/include/.../scene.hpp)")
+      ->required();
+  sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();
+  sub->callback([options, &exit_status] { exit_status = run_run(*options); });
+}
+
+struct ValidateArgs {
+  bool quick = false;
+  std::string out;
+  std::string scenes = ROCKCONTACT_SCENES_DIR;
+};
+
+int run_validate(const ValidateArgs& options) {
+  dyn::ValidationOptions validation;
+  validation.scenes_dir = options.scenes;
+  validation.quick = options.quick;
+  validation.out_dir = options.out;
+  if (stderr_is_terminal()) {
+    validation.on_scene = [](const std::string& scene) {
+      std::cerr << "running " << scene << '\n';
+    };
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<dyn::ValidationRow> rows = dyn::run_validation(validation);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << (options.quick ? "quick" : "full") << " validation, scenes from " << options.scenes
+            << '\n';
+  dyn::write_validation_table(std::cout, rows);
+  std::cout << "total wall time " << std::setprecision(3) << seconds << " s\n";
+  for (const dyn::ValidationRow& row : rows) {
+    if (!row.pass) return exit_validation_failed;
+  }
+  return exit_ok;
+}
+
+void add_validate(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<ValidateArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "validate", "Run the paper's scenes and compare each with its reference (exit 3 on a FAIL)");
+  sub->add_flag("--quick", options->quick, "Shortened durations (what the test suite runs)");
+  sub->add_option("-o,--out", options->out, "Write each run's outputs into DIR/<scene>/");
+  sub->add_option("--scenes", options->scenes, "Directory of the scene files")
+      ->capture_default_str();
+  sub->callback([options, &exit_status] { exit_status = run_validate(*options); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,6 +234,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_status = exit_ok;
   add_pairs(app, exit_status);
+  add_run(app, exit_status);
+  add_validate(app, exit_status);
   try {
     app.parse(argc, argv);
     return exit_status;
@@ -100,6 +245,9 @@ int main(int argc, char** argv) {
     std::cerr << "rockcontact: " << e.what() << '\n';
     return exit_bad_input;
   } catch (const UsageError& e) {
+    std::cerr << "rockcontact: " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const dyn::OutputError& e) {
     std::cerr << "rockcontact: " << e.what() << '\n';
     return exit_bad_input;
   } catch (const std::exception& e) {
