@@ -28,6 +28,7 @@ constexpr JsonField scene_fields[] = {
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
     {"contact", true, "an object {\"law\", \"kn\", \"H\", ...}"},
     {"blocks", true, "a non-empty array of blocks {\"id\", \"material\", \"vertices\", ...}"},
+    {"boundaries", false, "an array of boundary segments {\"id\", \"material\", \"from\", \"to\"}"},
     {"output", false, "an object {\"track\", \"every\"}"},
 };
 constexpr JsonField time_fields[] = {
@@ -55,6 +56,13 @@ constexpr JsonField block_fields[] = {
     {"fixed", false, "true or false"},
     {"rigid", false, "true or false"},
     {"velocity", false, "the centroid velocity [vx, vy, omega] in m/s, m/s, rad/s"},
+};
+constexpr JsonField boundary_fields[] = {
+    {"id", true, "a non-empty string, unique among blocks and boundaries"},
+    {"material", true, "the name of one of the scene's materials"},
+    {"from", true, "the segment's first end [x, y] in m"},
+    {"to", true, "the segment's second end [x, y] in m, not equal to from"},
+    {"depth", false, "the depth of the fixed polygon behind the segment in m, a finite number > 0"},
 };
 constexpr JsonField output_fields[] = {
     {"track", false, "an array of block ids"},
@@ -164,6 +172,27 @@ class SceneParser {
                                                  "\" (also " + json_element("blocks", it->second) +
                                                  ".id); expected ids unique within the scene");
       }
+    }
+  }
+
+  // Each segment becomes a fixed rectangle (a §3.3 virtual polygon) appended to the blocks: the
+  // segment is its edge from -> to, and it extends `depth` to the right of that direction.
+  void boundaries(const json& document, Scene& scene) const {
+    if (!document.contains("boundaries")) return;
+    const json& value = document.at("boundaries");
+    if (!value.is_array()) {
+      reader_.fail_expected("boundaries", expected(scene_fields, "boundaries"), value);
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      const std::string path = json_element("boundaries", i);
+      BlockSpec spec = boundary(value[i], path);
+      const bool taken = std::any_of(scene.blocks.begin(), scene.blocks.end(),
+                                     [&](const BlockSpec& b) { return b.id == spec.id; });
+      if (taken) {
+        reader_.fail(json_child(path, "id"), "duplicate id \"" + spec.id +
+                                                 "\"; expected ids unique among blocks and boundaries");
+      }
+      scene.blocks.push_back(std::move(spec));
     }
   }
 
@@ -284,6 +313,45 @@ class SceneParser {
       }
       spec.velocity = {v[0], v[1]};
       spec.omega = v[2];
+    }
+    return spec;
+  }
+
+  BlockSpec boundary(const json& value, const std::string& path) const {
+    reader_.check_object(value, path,
+                         "a boundary segment, an object {\"id\", \"material\", \"from\", \"to\"}",
+                         boundary_fields);
+    BlockSpec spec;
+    const std::string id_path = json_child(path, "id");
+    spec.id = reader_.string(value.at("id"), id_path, expected(boundary_fields, "id"));
+    if (spec.id.empty()) reader_.fail_expected(id_path, expected(boundary_fields, "id"), value.at("id"));
+    spec.material = material_of(value.at("material"), json_child(path, "material"));
+    spec.fixed = true;
+    const auto from = reader_.numbers(value.at("from"), json_child(path, "from"), 2,
+                                      expected(boundary_fields, "from"));
+    const auto to = reader_.numbers(value.at("to"), json_child(path, "to"), 2,
+                                    expected(boundary_fields, "to"));
+    const double dx = to[0] - from[0], dy = to[1] - from[1];
+    const double length = std::hypot(dx, dy);
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      reader_.fail(json_child(path, "to"), "the segment has no direction (to equals from) or " +
+                                               std::string("overflows; expected two distinct ends"));
+    }
+    double depth = length;
+    if (value.contains("depth")) {
+      depth = reader_.positive(value.at("depth"), json_child(path, "depth"),
+                               expected(boundary_fields, "depth"));
+    }
+    // Right of from -> to: (dy, -dx) / length. CCW order: the far side first, then to, from.
+    const double rx = depth * dy / length, ry = -depth * dx / length;
+    spec.vertices = {{from[0] + rx, from[1] + ry}, {to[0] + rx, to[1] + ry}, {to[0], to[1]},
+                     {from[0], from[1]}};
+    try {
+      kernel::ConvexPolygon::make("boundary '" + spec.id + "'", spec.vertices,
+                                  kernel::VertexOrder::require_ccw);
+    } catch (const kernel::InvalidPolygon& e) {
+      reader_.fail(path, std::string(e.what()) + "; expected a depth that is not negligible " +
+                             "against the coordinates");
     }
     return spec;
   }
@@ -447,8 +515,9 @@ Scene parse_scene(const json& document, const std::string& source_name) {
   parser.materials(document.at("materials"));
   parser.contact(document.at("contact"), scene);
   parser.blocks(document.at("blocks"), scene);
+  parser.resolve_h(scene);  // from the blocks only: a boundary's depth is a construction aid
+  parser.boundaries(document, scene);
   parser.output(document, scene);
-  parser.resolve_h(scene);
   return scene;
 }
 

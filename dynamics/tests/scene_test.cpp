@@ -356,3 +356,86 @@ BOOST_AUTO_TEST_CASE(file_errors_name_the_file) {
 
   BOOST_TEST(!file_error(scene_dir + "/two_blocks.json").has_value());
 }
+
+// A boundary segment (seed 000 §3.3) is the edge from -> to of a fixed rectangle on its right.
+// Hand values: the floor from (4, 0) to (-2, 0) runs leftwards, so its rectangle lies above it,
+// depth 0.5: (4, 0.5), (-2, 0.5), (-2, 0), (4, 0) in CCW order; the wall from (0, 0) to (0, 3)
+// with the default depth |to - from| = 3 lies at x in [0, 3]. H (mean_edge) still counts the
+// blocks only, and the default track list still skips fixed blocks.
+BOOST_AUTO_TEST_CASE(boundary_segments_become_fixed_rectangles_on_their_right) {
+  json document = minimal_scene();
+  document["boundaries"] = json::parse(R"([
+    {"id": "floor", "material": "soft", "from": [4, 0], "to": [-2, 0], "depth": 0.5},
+    {"id": "wall", "material": "soft", "from": [0, 0], "to": [0, 3]}])");
+  const dyn::Scene scene = dyn::parse_scene(document, "boundaries.json");
+  BOOST_TEST_REQUIRE(scene.blocks.size() == 5u);
+  const dyn::BlockSpec& floor = scene.blocks[3];
+  const dyn::BlockSpec& wall = scene.blocks[4];
+  BOOST_TEST(floor.id == "floor");
+  BOOST_TEST(floor.fixed);
+  const std::vector<kernel::Point2> floor_hand{{4, 0.5}, {-2, 0.5}, {-2, 0}, {4, 0}};
+  const std::vector<kernel::Point2> wall_hand{{3, 0}, {3, 3}, {0, 3}, {0, 0}};
+  BOOST_TEST_REQUIRE(floor.vertices.size() == 4u);
+  BOOST_TEST_REQUIRE(wall.vertices.size() == 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    BOOST_TEST_CONTEXT("vertex " << k) {  // exact: the offsets are exact multiples here
+      BOOST_TEST(floor.vertices[k].x == floor_hand[k].x);
+      BOOST_TEST(floor.vertices[k].y == floor_hand[k].y);
+      BOOST_TEST(wall.vertices[k].x == wall_hand[k].x);
+      BOOST_TEST(wall.vertices[k].y == wall_hand[k].y);
+    }
+  }
+  const double hand_h = (14.0 + 1.0 + 2.0 * std::sqrt(1.25)) / 11.0;  // as without boundaries
+  BOOST_TEST(scene.law.normal.H == hand_h, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(scene.track == (std::vector<std::string>{"a", "b"}));
+}
+
+BOOST_AUTO_TEST_CASE(boundary_errors) {
+  const auto with_boundary = [](const char* text) {
+    return [text](json& d) { d["boundaries"] = json::array({json::parse(text)}); };
+  };
+  expect_error([](json& d) { d["boundaries"] = json::object(); }, "boundaries",
+               "an array of boundary segments");
+  expect_error(with_boundary(R"({"id": "floor", "material": "rock", "from": [0, 0]})"),
+               "boundaries[0].to", "missing field");
+  expect_error(with_boundary(R"({"id": "floor", "material": "rock", "from": [0, 0],
+                                 "to": [1, 0], "side": "left"})"),
+               "boundaries[0].side", "unknown field; expected only id, material, from, to, depth");
+  expect_error(with_boundary(R"({"id": "floor", "material": "rock", "from": [1, 2], "to": [1, 2]})"),
+               "boundaries[0].to", "to equals from");
+  expect_error(with_boundary(R"({"id": "floor", "material": "rock", "from": [0, 0], "to": [1, 0],
+                                 "depth": -1})"),
+               "boundaries[0].depth", "a finite number > 0");
+  expect_error(with_boundary(R"({"id": "base", "material": "rock", "from": [0, 0], "to": [1, 0]})"),
+               "boundaries[0].id", R"(duplicate id "base")");
+  expect_error(with_boundary(R"({"id": "floor", "material": "clay", "from": [0, 0], "to": [1, 0]})"),
+               "boundaries[0].material", R"(unknown material "clay")");
+}
+
+// A rigid 1 m square resting on a floor segment: the contact must hold it at its static
+// penetration. Face on face over L = 1 m, the potential force is 2 kn L δ / H (both long edges
+// of the thin IP count, dda2d.hpp), so δ = m g H / (2 kn L) = 2000 · 9.81 · 1 / (2e7) =
+// 0.981 mm. Starting at rest exactly that deep, the block must stay there: its centroid moves by
+// less than 1e-3 δ over 0.05 s (the normal force matches the weight to the rounding of δ and of
+// the IP construction, both ~1e-16 relative, so any drift at all would come from a contact that
+// does not act through the boundary).
+BOOST_AUTO_TEST_CASE(block_rests_on_a_floor_segment_at_its_static_penetration) {
+  const double delta = 2000.0 * 9.81 * 1.0 / (2.0 * 1e7 * 1.0);
+  json document = json::parse(R"({"dimension": 2,
+   "time": {"dt": 1e-4, "duration": 0.05},
+   "materials": {"rock": {"density": 2000, "youngs_modulus": 1e9, "poisson_ratio": 0.25}},
+   "contact": {"law": "potential", "kn": 1e7, "H": 1.0},
+   "boundaries": [{"id": "floor", "material": "rock", "from": [-3, 0], "to": [3, 0]}]})");
+  document["blocks"] = json::array({{{"id", "block"},
+                                     {"material", "rock"},
+                                     {"rigid", true},
+                                     {"vertices", {{-0.5, -delta}, {0.5, -delta}, {0.5, 1 - delta},
+                                                   {-0.5, 1 - delta}}}}});
+  const dyn::Scene scene = dyn::parse_scene(document, "resting.json");
+  dyn::Dda2d sim(scene.blocks, scene.law, scene.params);
+  const kernel::Point2 start = sim.blocks()[0].centroid;
+  while (sim.steps() < dyn::step_count(scene)) sim.step();
+  const kernel::Point2 end = sim.blocks()[0].centroid;
+  BOOST_TEST(sim.contacts().size() == 1u);
+  BOOST_TEST(std::hypot(end.x - start.x, end.y - start.y) <= 1e-3 * delta);
+}

@@ -21,17 +21,29 @@
 //                "fixed": bool (default false), "rigid": bool (default false),
 //                "velocity": [vx, vy, omega] m/s, m/s, rad/s of the centroid (default 0;
 //                            not allowed on a fixed block)}, ...],
+//    "boundaries": [{"id": unique among blocks and boundaries, "material": a name,
+//                    "from": [x, y] m, "to": [x, y] m, "depth": m > 0 (default |to - from|)},
+//                   ...]                                  (optional; seed 000 §3.3)
 //    "output": {"track": [block ids] (default: every block that is not fixed),
 //               "every": steps >= 1 (default 100)}}                (optional)
 //
+// A boundary segment is, as in seed 000 §3.3, part of a virtual polygon: the fixed rectangle
+// whose edge from -> to is the segment and which extends `depth` to its right (the free side is
+// on the left, as for the edges of a CCW polygon: a floor runs from left to right). It is
+// appended to the blocks as a fixed block with the boundary's id. Inside that rectangle the
+// potential near the segment is the depth below it as long as a block penetrates less than
+// depth / 2 and stays off the segment's ends; give a block instead where the shape matters.
+//
 // H, the potential's length scale (seed 000 eq. 14), is one number for the whole scene:
 //   number       as given;
-//   "mean_edge"  the mean edge length over every edge of every block (fixed ones included): a
+//   "mean_edge"  the mean edge length over every edge of every block (fixed ones included,
+//                boundary segments not: their rectangles' depth is a construction aid): a
 //                unified H in the sense of §5.1, the same for every pair (the paper's own
 //                unified value there is the average of the longest and shortest edge);
 //   "inscribed"  the paper's "previous approach" (§5.1) used each block's inscribed-circle
 //                radius as its own H. Our contact law takes one H per scene, so this is the
-//                smallest inscribed radius over all blocks (fixed ones included): the stiffest
+//                smallest inscribed radius over all blocks (fixed ones included, boundary
+//                segments not): the stiffest
 //                of the per-block potentials, the one that sets the stability limit.
 //
 // Polygons are validated here (kernel::ConvexPolygon) so that a bad vertex is reported with the
