@@ -10,9 +10,11 @@
 #include <utility>
 
 #include <Eigen/Dense>
+#include <omp.h>
 
 #include "block_matrices.hpp"
 #include "broad_phase.hpp"
+#include "rockcontact/kernel/block_cutting.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
 
@@ -29,6 +31,9 @@ constexpr std::size_t broad_phase_threshold = 8;
 constexpr double energy_growth_factor = 2.0;
 constexpr double energy_floor_speed = 1.0e-3;
 constexpr double penetration_fraction = 0.5;
+// Below this many candidate pairs the contact pass runs on the calling thread only: starting the
+// workers would cost more than it saves.
+constexpr std::ptrdiff_t parallel_threshold = 64;
 
 std::string number(double x) {
   char text[32];
@@ -59,6 +64,10 @@ void check_params(const ContactLaw& law, const DdaParams& params) {
   if (!finite(params.gravity.x) || !finite(params.gravity.y)) {
     throw std::invalid_argument("dda2d: gravity must be finite (m/s²)");
   }
+  if (params.threads > 1024) {
+    throw std::invalid_argument("dda2d: threads must be 0 (one per core) or at most 1024, got " +
+                                std::to_string(params.threads));
+  }
   if (!finite(params.mass_damping) || !(params.mass_damping >= 0.0)) {
     throw std::invalid_argument("dda2d: mass_damping must be finite and >= 0 (1/s), got " +
                                 number(params.mass_damping));
@@ -72,6 +81,19 @@ void check_params(const ContactLaw& law, const DdaParams& params) {
                                 number(law.normal.H));
   }
   if (law.friction) contact::check_friction_law(*law.friction);
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const Interface& face : law.interfaces) {
+    const std::string name = "dda2d: interface between groups '" + face.groups[0] + "' and '" +
+                             face.groups[1] + "'";
+    if (!finite(face.kn) || !(face.kn > 0.0)) {
+      throw std::invalid_argument(name + ": kn must be finite and > 0 (Pa), got " + number(face.kn));
+    }
+    if (face.friction) contact::check_friction_law(*face.friction);
+    const auto key = std::minmax(face.groups[0], face.groups[1]);
+    if (!seen.emplace(key.first, key.second).second) {
+      throw std::invalid_argument(name + " is given twice");
+    }
+  }
 }
 
 void check_spec(const BlockSpec& spec, std::set<std::string>& ids) {
@@ -100,16 +122,61 @@ void check_spec(const BlockSpec& spec, std::set<std::string>& ids) {
   }
 }
 
+// A block's convex parts (the block itself when it is convex): each part's vertices are
+// outline vertices, by index, so the parts follow the outline's motion exactly.
+struct Parts {
+  std::vector<kernel::ConvexPolygon> polygons;   // current
+  std::vector<std::vector<std::size_t>> corners;  // indices into BlockState::vertices
+  std::vector<detail::BroadPhaseBox> boxes;       // current, m (only when there are several)
+};
+
+// The contact properties of one pair of groups (or the defaults).
+struct PairLaw {
+  contact::PotentialContactParams normal;
+  std::optional<FrictionLaw> friction;
+};
+
+// Friction records are kept per pair of parts.
+struct PartPair {
+  std::size_t cp, tp, cp_part, tp_part;
+  auto operator<=>(const PartPair&) const = default;
+};
+
+// A candidate pair of parts and what the parallel pass measured for it.
+struct PartContact {
+  PartPair parts;
+  bool touching = false;  // overlap with a non-zero force
+  Vector2 force;          // normal force on CP, N/m
+  Point2 point;           // contact point, m
+  double depth = 0.0;     // minimum translation distance, m
+  std::size_t ip_size = 0;
+  double area = 0.0;      // IP area, m²
+};
+
+// Scratch of one thread's pair evaluations.
+struct PairScratch {
+  contact::PairWorkspace workspace;
+  contact::PairResult result;
+};
+
+void add_counters(kernel::PredicateCounters& total, const kernel::PredicateCounters& spent) {
+  for (std::size_t k = 0; k < kernel::predicate_kind_count; ++k) {
+    total.calls[k] += spent.calls[k];
+    total.fallbacks[k] += spent.fallbacks[k];
+  }
+}
+
 // What the engine keeps per block besides the public BlockState.
 struct Body {
-  explicit Body(kernel::ConvexPolygon p) : polygon(std::move(p)) {}
+  explicit Body(Parts p) : parts(std::move(p)) {}
 
-  kernel::ConvexPolygon polygon;  // current
+  Parts parts;
+  std::size_t group = 0;  // index into the engine's group table
   Material material;
   Eigen::Matrix3d elasticity;   // E of eq. 5b, Pa
   Eigen::Matrix3d flexibility;  // E^-1, 1/Pa
   Point2 initial_centroid;      // m
-  double inradius = 0.0;        // m, at the start (strains are small)
+  double inradius = 0.0;        // m, smallest over the parts, at the start (strains are small)
   double perimeter = 0.0;       // m, at the start
   double compliance = 0.0;      // largest point compliance, 1/kg (0 when fixed)
   double elastic_omega2 = 0.0;  // rad²/s², 0 unless deformable
@@ -140,7 +207,16 @@ struct Dda2d::Impl {
   template <kernel::NumberPolicy Policy>
   void evaluate_contacts();
   void candidate_pairs();
-  double penetration(std::size_t i, std::size_t j);
+  void resolve_groups(const std::vector<BlockSpec>& specs);
+  template <kernel::NumberPolicy Policy>
+  void measure_candidates();
+  template <kernel::NumberPolicy Policy>
+  void measure(PartContact& c, PairScratch& mine) const;
+  void record_contact(const PartContact& m);
+  void check_penetration(const PartContact& m);
+  std::size_t law_index(std::size_t i, std::size_t j) const {
+    return law_of_groups[bodies[i].group * group_count + bodies[j].group];
+  }
   void apply_contact(const ContactState& c);
   void solve_acceleration(std::size_t i);
   // The step's parts.
@@ -155,6 +231,9 @@ struct Dda2d::Impl {
 
   ContactLaw law;
   DdaParams params;
+  std::vector<PairLaw> laws;              // laws[0]: the defaults; then one per interface
+  std::vector<std::size_t> law_of_groups;  // groups² table of indices into laws
+  std::size_t group_count = 0;
   std::vector<Body> bodies;
   std::vector<BlockState> states;
   std::vector<ContactState> contacts;
@@ -164,11 +243,12 @@ struct Dda2d::Impl {
     contact::FrictionState state;
     std::size_t evaluation = 0;
   };
-  std::map<BlockPair, FrictionRecord> friction;
+  std::map<PartPair, FrictionRecord> friction;
   std::vector<contact::FrictionState*> contact_records;
   std::size_t evaluations = 0;
-  contact::PairWorkspace workspace;
-  contact::PairResult pair;
+  std::vector<PartContact> candidates;
+  std::vector<PairScratch> thread_scratch;  // one per thread
+  int thread_count = 1;
   detail::SweepAndPrune sweep;
   std::vector<BlockPair> pairs;
   std::vector<detail::BroadPhaseBox> boxes;
@@ -195,13 +275,7 @@ class CountInto {
  public:
   explicit CountInto(kernel::PredicateCounters& total)
       : total_(total), before_(kernel::predicate_counters()) {}
-  ~CountInto() {
-    const kernel::PredicateCounters spent = kernel::predicate_counters() - before_;
-    for (std::size_t k = 0; k < kernel::predicate_kind_count; ++k) {
-      total_.calls[k] += spent.calls[k];
-      total_.fallbacks[k] += spent.fallbacks[k];
-    }
-  }
+  ~CountInto() { add_counters(total_, kernel::predicate_counters() - before_); }
   CountInto(const CountInto&) = delete;
   CountInto& operator=(const CountInto&) = delete;
 
@@ -215,12 +289,15 @@ class CountInto {
 Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params)
     : law(std::move(contact_law)), params(dda_params) {
   check_params(law, params);
+  thread_count = params.threads == 0 ? omp_get_max_threads() : static_cast<int>(params.threads);
+  thread_scratch.resize(static_cast<std::size_t>(thread_count));
   if (specs.empty()) throw std::invalid_argument("dda2d: no blocks");
   std::set<std::string> ids;
   for (const BlockSpec& spec : specs) check_spec(spec, ids);
   bodies.reserve(specs.size());
   states.reserve(specs.size());
   for (const BlockSpec& spec : specs) add_block(spec);
+  resolve_groups(specs);
   estimate_critical_step();
   evaluate_forces();
   const Energies e = energies();
@@ -232,27 +309,85 @@ Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParam
   initial_budget = e.kinetic + e.strain + floor;
 }
 
+// The convex parts of a block: itself when convex, else its exact convex partition.
+Parts make_parts(const BlockSpec& spec) {
+  const std::string name = block_name(spec.id);
+  Parts parts;
+  try {
+    parts.polygons.push_back(kernel::ConvexPolygon::make(name, spec.vertices));
+    std::vector<std::size_t>& all = parts.corners.emplace_back(spec.vertices.size());
+    for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+    return parts;
+  } catch (const kernel::InvalidPolygon& e) {
+    if (e.reason() != kernel::InvalidPolygon::Reason::not_convex) throw;
+  }
+  std::vector<std::vector<Point2>> pieces;
+  try {
+    pieces = kernel::convex_partition(spec.vertices);
+  } catch (const kernel::InvalidCut& e) {
+    throw std::invalid_argument("dda2d: " + name + " is neither convex nor a simple CCW polygon: " +
+                                e.what());
+  }
+  std::map<std::pair<double, double>, std::size_t> index;
+  for (std::size_t k = 0; k < spec.vertices.size(); ++k) {
+    index.emplace(std::pair{spec.vertices[k].x, spec.vertices[k].y}, k);
+  }
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    std::vector<std::size_t>& corners = parts.corners.emplace_back();
+    for (const Point2& v : pieces[p]) corners.push_back(index.at({v.x, v.y}));
+    parts.polygons.push_back(
+        kernel::ConvexPolygon::make(name + " part " + std::to_string(p), pieces[p]));
+  }
+  parts.boxes.resize(pieces.size());
+  return parts;
+}
+
 void Dda2d::Impl::add_block(const BlockSpec& spec) {
-  Body& b = bodies.emplace_back(kernel::ConvexPolygon::make(block_name(spec.id), spec.vertices));
+  Body& b = bodies.emplace_back(make_parts(spec));
   BlockState& s = states.emplace_back();
   s.id = spec.id;
   s.vertices = spec.vertices;
   s.fixed = spec.fixed;
   s.rigid = spec.rigid;
   if (!spec.fixed) s.velocity = {spec.velocity.x, spec.velocity.y, spec.omega, 0.0, 0.0, 0.0};
-  const detail::CentralMoments m = detail::central_moments(b.polygon.vertices(), scratch);
+  const detail::CentralMoments m = detail::central_moments(s.vertices, scratch);
   s.mass = spec.material.density * m.area;
   b.material = spec.material;
   b.elasticity = detail::elasticity_matrix(spec.material, params.plane);
   b.flexibility = b.elasticity.inverse();
   b.initial_centroid = m.centroid;
-  b.inradius = detail::inradius(b.polygon.vertices());
-  b.perimeter = detail::perimeter(b.polygon.vertices());
+  b.inradius = std::numeric_limits<double>::infinity();
+  for (const kernel::ConvexPolygon& part : b.parts.polygons) {
+    b.inradius = std::min(b.inradius, detail::inradius(part.vertices()));
+  }
+  b.perimeter = detail::perimeter(s.vertices);
   if (!spec.fixed) {
-    b.compliance = detail::max_vertex_compliance(b.polygon.vertices(), m, s.mass, spec.rigid);
+    b.compliance = detail::max_vertex_compliance(s.vertices, m, s.mass, spec.rigid);
     if (!spec.rigid) b.elastic_omega2 = detail::elastic_omega_squared(m, s.mass, b.elasticity);
   }
   refresh(bodies.size() - 1);
+}
+
+// laws[0] is the scene default; each interface adds one law and fills the groups² table.
+void Dda2d::Impl::resolve_groups(const std::vector<BlockSpec>& specs) {
+  std::map<std::string, std::size_t, std::less<>> groups;
+  const auto group_index = [&](const std::string& g) {
+    return groups.emplace(g, groups.size()).first->second;
+  };
+  for (std::size_t i = 0; i < specs.size(); ++i) bodies[i].group = group_index(specs[i].group);
+  for (const Interface& face : law.interfaces) {
+    group_index(face.groups[0]);
+    group_index(face.groups[1]);
+  }
+  group_count = groups.size();
+  laws.assign(1, PairLaw{law.normal, law.friction});
+  law_of_groups.assign(group_count * group_count, 0);
+  for (const Interface& face : law.interfaces) {
+    PairLaw& l = laws.emplace_back(PairLaw{law.normal, face.friction});
+    l.normal.kn = face.kn;
+    const std::size_t a = group_index(face.groups[0]), b = group_index(face.groups[1]);
+    law_of_groups[a * group_count + b] = law_of_groups[b * group_count + a] = laws.size() - 1;
+  }
 }
 
 void Dda2d::Impl::estimate_critical_step() {
@@ -265,32 +400,34 @@ void Dda2d::Impl::estimate_critical_step() {
                       number(m.youngs_modulus) + " Pa, nu = " + number(m.poisson_ratio) +
                       ", mass " + number(states[i].mass) + " kg/m)";
   }
-  const double kn_per_length = law.normal.kn / law.normal.H;
-  const double kt = law.friction ? law.friction->kt : 0.0;
-  std::size_t best_i = 0, best_j = 0;
+  // The O(n) pair bound of dda2d.hpp, with the stiffest of all laws.
+  double kn = 0.0, kt = 0.0;
+  for (const PairLaw& l : laws) {
+    kn = std::max(kn, l.normal.kn);
+    if (l.friction) kt = std::max(kt, l.friction->kt);
+  }
+  const double kn_per_length = kn / law.normal.H;
+  const auto movable = static_cast<std::size_t>(
+      std::count_if(states.begin(), states.end(), [](const BlockState& s) { return !s.fixed; }));
+  const bool any_fixed = movable < states.size();
+  const double partners = movable >= 2 ? 2.0 : (any_fixed ? 1.0 : 0.0);
+  std::size_t best = 0;
   double best_pair = 0.0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    for (std::size_t j = i + 1; j < bodies.size(); ++j) {
-      if (states[i].fixed && states[j].fixed) continue;
-      const double length = std::min(bodies[i].perimeter, bodies[j].perimeter);
-      const double w2 = (kn_per_length * length + kt) * (bodies[i].compliance + bodies[j].compliance);
-      if (w2 > best_pair) {
-        best_pair = w2;
-        best_i = i;
-        best_j = j;
-      }
+    const double w2 = partners * (kn_per_length * bodies[i].perimeter + kt) * bodies[i].compliance;
+    if (w2 > best_pair) {
+      best_pair = w2;
+      best = i;
     }
   }
   if (best_pair > worst) {
     worst = best_pair;
-    const Body& a = bodies[best_i];
-    const Body& b = bodies[best_j];
-    critical_source = "contact of " + block_name(states[best_i].id) + " with " +
-                      block_name(states[best_j].id) + " (kn/H L + kt = " +
-                      number(kn_per_length * std::min(a.perimeter, b.perimeter) + kt) +
-                      " N/m with L = " + number(std::min(a.perimeter, b.perimeter)) +
-                      " m, point compliances " + number(a.compliance) + " + " +
-                      number(b.compliance) + " 1/kg)";
+    const Body& b = bodies[best];
+    critical_source = "contacts of " + block_name(states[best].id) + " (kn/H P + kt = " +
+                      number(kn_per_length * b.perimeter + kt) + " N/m with P = " +
+                      number(b.perimeter) + " m its perimeter, point compliance " +
+                      number(b.compliance) + " 1/kg" +
+                      (partners == 2.0 ? ", doubled for a partner as compliant" : "") + ")";
   }
   if (worst == 0.0) return;
   critical = 2.0 / std::sqrt(worst);
@@ -305,7 +442,7 @@ void Dda2d::Impl::estimate_critical_step() {
 void Dda2d::Impl::refresh(std::size_t i) {
   Body& b = bodies[i];
   BlockState& s = states[i];
-  const detail::CentralMoments m = detail::central_moments(b.polygon.vertices(), scratch);
+  const detail::CentralMoments m = detail::central_moments(s.vertices, scratch);
   s.area = m.area;
   s.centroid = m.centroid;
   if (s.rigid) {
@@ -343,83 +480,164 @@ void Dda2d::Impl::evaluate_forces() {
   }
 }
 
+namespace {
+
+detail::BroadPhaseBox bounding_box(std::span<const Point2> vertices) {
+  detail::BroadPhaseBox box;
+  box.xmin = box.ymin = std::numeric_limits<double>::infinity();
+  box.xmax = box.ymax = -std::numeric_limits<double>::infinity();
+  for (const Point2& p : vertices) {
+    box.xmin = std::min(box.xmin, p.x);
+    box.xmax = std::max(box.xmax, p.x);
+    box.ymin = std::min(box.ymin, p.y);
+    box.ymax = std::max(box.ymax, p.y);
+  }
+  return box;
+}
+
+bool boxes_overlap(const detail::BroadPhaseBox& a, const detail::BroadPhaseBox& b) {
+  return a.xmin <= b.xmax && b.xmin <= a.xmax && a.ymin <= b.ymax && b.ymin <= a.ymax;
+}
+
+}  // namespace
+
 void Dda2d::Impl::candidate_pairs() {
   const bool small = bodies.size() <= broad_phase_threshold;
-  if (small && !pairs.empty()) return;  // every pair, fixed once
   boxes.resize(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    detail::BroadPhaseBox& box = boxes[i];
-    box.fixed = states[i].fixed;
-    box.xmin = box.ymin = std::numeric_limits<double>::infinity();
-    box.xmax = box.ymax = -std::numeric_limits<double>::infinity();
-    for (const Point2& p : states[i].vertices) {
-      box.xmin = std::min(box.xmin, p.x);
-      box.xmax = std::max(box.xmax, p.x);
-      box.ymin = std::min(box.ymin, p.y);
-      box.ymax = std::max(box.ymax, p.y);
+    Parts& parts = bodies[i].parts;
+    boxes[i] = bounding_box(states[i].vertices);
+    boxes[i].fixed = states[i].fixed;
+    for (std::size_t p = 0; p < parts.boxes.size(); ++p) {
+      parts.boxes[p] = bounding_box(parts.polygons[p].vertices());
     }
   }
-  if (small) {
-    detail::all_pairs(boxes, pairs);
-  } else {
+  if (!small) {
     sweep.find_pairs(boxes, pairs);
+  } else if (pairs.empty()) {
+    detail::all_pairs(boxes, pairs);  // every pair, fixed once
   }
 }
 
 template <kernel::NumberPolicy Policy>
 void Dda2d::Impl::evaluate_contacts() {
   candidate_pairs();
+  candidates.clear();
+  for (const auto& [i, j] : pairs) {
+    const Parts& a = bodies[i].parts;
+    const Parts& b = bodies[j].parts;
+    const bool several = a.polygons.size() > 1 || b.polygons.size() > 1;
+    for (std::size_t p = 0; p < a.polygons.size(); ++p) {
+      for (std::size_t q = 0; q < b.polygons.size(); ++q) {
+        if (several && !boxes_overlap(a.boxes.empty() ? boxes[i] : a.boxes[p],
+                                      b.boxes.empty() ? boxes[j] : b.boxes[q])) {
+          continue;
+        }
+        PartContact& c = candidates.emplace_back();
+        c.parts = {i, j, p, q};
+      }
+    }
+  }
+  measure_candidates<Policy>();
   contacts.clear();
   contact_records.clear();
   ++evaluations;
-  for (const auto& [i, j] : pairs) {
-    contact::evaluate_pair<Policy>(bodies[i].polygon, bodies[j].polygon, law.normal, workspace, pair);
-    if (pair.status != kernel::Overlap::overlap || !pair.point) continue;
-    if (!finite(pair.force.x) || !finite(pair.force.y) || !finite(pair.point->x) ||
-        !finite(pair.point->y)) {
-      throw StabilityError(at_step() + "the contact of " + block_name(states[i].id) + " with " +
-                           block_name(states[j].id) + " gave a non-finite force or contact point " +
-                           "(IP of " + std::to_string(pair.ip.size()) + " vertices, area " +
-                           number(pair.area) + " m²)");
-    }
-    ContactState c;
-    c.cp = i;
-    c.tp = j;
-    c.point = *pair.point;
-    c.normal_force = pair.force;
-    c.penetration = penetration(i, j);
-    contact::FrictionState* record = nullptr;
-    if (law.friction) {
-      FrictionRecord& stamped = friction[{i, j}];  // a new contact starts in stick, d = 0
-      stamped.evaluation = evaluations;
-      record = &stamped.state;
-      const contact::FrictionResult r = contact::evaluate_friction(*record, c.normal_force, *law.friction);
-      contact::commit_friction(*record, r);
-      c.friction_force = r.force;
-      c.sliding = r.sliding;
-    }
-    apply_contact(c);
-    contacts.push_back(c);
-    contact_records.push_back(record);
+  for (const PartContact& c : candidates) {
+    if (c.touching) record_contact(c);
   }
   // Pairs that separated lose their record.
   std::erase_if(friction, [&](const auto& entry) { return entry.second.evaluation != evaluations; });
 }
 
-double Dda2d::Impl::penetration(std::size_t i, std::size_t j) {
-  const double depth =
-      kernel::compute_entrance_block<kernel::Filtered>(bodies[i].polygon, bodies[j].polygon).distance;
-  max_penetration = std::max(max_penetration, depth);
+// The geometric work of every candidate (the IP, the normal force and the penetration depth),
+// spread over the threads; each candidate is independent and its result stored in place, so the
+// serial pass that follows sees the same numbers in the same order for any thread count.
+// Predicate counters are thread-local: the workers' share is added to `counters` here, the
+// calling thread's by the CountInto of step().
+template <kernel::NumberPolicy Policy>
+void Dda2d::Impl::measure_candidates() {
+  const auto count = static_cast<std::ptrdiff_t>(candidates.size());
+  const int threads = count >= parallel_threshold ? thread_count : 1;
+#pragma omp parallel num_threads(threads)
+  {
+    const int me = omp_get_thread_num();
+    PairScratch& mine = thread_scratch[static_cast<std::size_t>(me)];
+    const kernel::PredicateCounters before = kernel::predicate_counters();
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      measure<Policy>(candidates[static_cast<std::size_t>(k)], mine);
+    }
+    if (me != 0) {
+      const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
+#pragma omp critical(rockcontact_dda2d_counters)
+      add_counters(counters, spent);
+    }
+  }
+}
+
+template <kernel::NumberPolicy Policy>
+void Dda2d::Impl::measure(PartContact& c, PairScratch& mine) const {
+  const auto [i, j, p, q] = c.parts;
+  const kernel::ConvexPolygon& cp = bodies[i].parts.polygons[p];
+  const kernel::ConvexPolygon& tp = bodies[j].parts.polygons[q];
+  contact::PairResult& r = mine.result;
+  contact::evaluate_pair<Policy>(cp, tp, laws[law_index(i, j)].normal, mine.workspace, r);
+  c.touching = r.status == kernel::Overlap::overlap && r.point.has_value();
+  if (!c.touching) return;
+  c.force = r.force;
+  c.point = *r.point;
+  c.ip_size = r.ip.size();
+  c.area = r.area;
+  c.depth = kernel::compute_entrance_block<kernel::Filtered>(cp, tp).distance;
+}
+
+// A measured contact: checked, given its friction force and applied to both blocks.
+void Dda2d::Impl::record_contact(const PartContact& m) {
+  const auto [i, j, p, q] = m.parts;
+  if (!finite(m.force.x) || !finite(m.force.y) || !finite(m.point.x) || !finite(m.point.y)) {
+    throw StabilityError(at_step() + "the contact of " + block_name(states[i].id) + " with " +
+                         block_name(states[j].id) + " gave a non-finite force or contact point " +
+                         "(IP of " + std::to_string(m.ip_size) + " vertices, area " +
+                         number(m.area) + " m²)");
+  }
+  check_penetration(m);
+  ContactState c;
+  c.cp = i;
+  c.tp = j;
+  c.cp_part = p;
+  c.tp_part = q;
+  c.point = m.point;
+  c.normal_force = m.force;
+  c.penetration = m.depth;
+  contact::FrictionState* record = nullptr;
+  const std::optional<FrictionLaw>& friction_law = laws[law_index(i, j)].friction;
+  if (friction_law) {
+    FrictionRecord& stamped = friction[m.parts];  // a new contact starts in stick, d = 0
+    stamped.evaluation = evaluations;
+    record = &stamped.state;
+    const contact::FrictionResult r = contact::evaluate_friction(*record, c.normal_force, *friction_law);
+    contact::commit_friction(*record, r);
+    c.friction_force = r.force;
+    c.sliding = r.sliding;
+  }
+  apply_contact(c);
+  contacts.push_back(c);
+  contact_records.push_back(record);
+}
+
+void Dda2d::Impl::check_penetration(const PartContact& m) {
+  const auto [i, j, p, q] = m.parts;
+  max_penetration = std::max(max_penetration, m.depth);
   const double limit = penetration_fraction * std::min(bodies[i].inradius, bodies[j].inradius);
-  if (depth > limit) {
+  if (m.depth > limit) {
     throw StabilityError(at_step() + block_name(states[i].id) + " and " + block_name(states[j].id) +
-                         " overlap by " + number(depth) +
+                         " overlap by " + number(m.depth) +
                          " m (minimum translation distance), more than half the smaller inradius (" +
                          number(limit) + " m): the contact no longer holds them apart; kn = " +
-                         number(law.normal.kn) + " Pa is too soft for the load, or the blocks " +
-                         "move too far in one step of dt = " + number(params.dt) + " s");
+                         number(laws[law_index(i, j)].normal.kn) +
+                         " Pa is too soft for the load, or the blocks move too far in one step of " +
+                         "dt = " + number(params.dt) + " s");
   }
-  return depth;
 }
 
 void Dda2d::Impl::apply_contact(const ContactState& c) {
@@ -543,7 +761,13 @@ void Dda2d::Impl::move(std::size_t i) {
     s.velocity[5] = 2.0 * rate[2];
   }
   try {
-    b.polygon = kernel::ConvexPolygon::make(block_name(s.id), s.vertices);
+    Parts& parts = b.parts;
+    for (std::size_t p = 0; p < parts.polygons.size(); ++p) {
+      std::vector<Point2> corners;
+      corners.reserve(parts.corners[p].size());
+      for (const std::size_t k : parts.corners[p]) corners.push_back(s.vertices[k]);
+      parts.polygons[p] = kernel::ConvexPolygon::make(parts.polygons[p].name(), std::move(corners));
+    }
   } catch (const kernel::InvalidPolygon& e) {
     throw StabilityError(at_step() + block_name(s.id) + " is no longer a valid convex polygon (" +
                          e.what() + "); its strain increment was (" + number(d[3]) + ", " +

@@ -4,7 +4,8 @@
 // Each block carries d = (u0, v0, r0, ex, ey, gxy) (eq. 2): centroid translation, rotation and
 // constant strain, with u(x, y) = T(x, y) d (eq. 3). Per step, from t_n to t_n+1 = t_n + h:
 //   1. contacts: broad phase (sweep and prune on x above 8 blocks, every pair below) ->
-//      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp);
+//      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp),
+//      measured for all candidate pairs in parallel (OpenMP), then assembled in pair order;
 //      tangential force by Coulomb stick/slide on the accumulated relative displacement of pg
 //      (eq. 24-26, contact/friction.hpp); f = f_n + f_t applied as T(xg, yg)^T f to CP and its
 //      negative to TP (eq. 22-23, 28-29). For a pair of blocks (i, j), i < j, CP is block i;
@@ -22,6 +23,18 @@
 //      under the same map (§3.2.6).
 // Rigid blocks carry 3 DOF and skip every strain term; fixed blocks (§3.3 virtual polygons)
 // take part in contact only. Frictionless laws keep no tangential state at all.
+//
+// ## Non-convex blocks
+// A non-convex block is split exactly into convex parts (kernel::convex_partition: the block's
+// own vertices, no Steiner points) that move as one: one set of DOF, mass and moments of the
+// whole outline. Contacts are found part against part, parts of one block never contact each
+// other, and friction records are kept per pair of parts. Each part carries its own potential
+// (seed 000 eq. 12-14 on the part), not the whole block's that §3.2.2 Fig. 5 asks for: inside a
+// part, the exit distance through an internal partition edge is shorter than the distance to the
+// block's boundary, so a block pressed into the region next to a partition edge (near a reflex
+// corner) feels a weaker force than the whole-block potential would give. On the partition edge
+// itself the two parts' contributions cancel exactly (equal φ of the other block, opposite
+// normals), so the approximation adds no spurious force there.
 //
 // Departures from the paper, each for a stated reason:
 //   * mass is conserved: the density is m / S with m = rho S at the start and S the current
@@ -44,8 +57,12 @@
 //     that boundary is no longer than L = min(perimeter_i, perimeter_j) since the IP lies in
 //     both blocks; c is the largest compliance of a point of the block (max over vertices of the
 //     largest eigenvalue of T M^-1 T^T; zero for a fixed block). By the Rayleigh quotient this
-//     bounds the pair's stiffest mode; kt enters only with friction. A block pressed by several
-//     neighbours at once can exceed a single pair's estimate; the monitor below stops such a run.
+//     bounds the pair's stiffest mode; kt enters only with friction. To stay O(n) the estimate
+//     takes, over movable blocks i, (kn / H · P_i + kt) c_i times 2 when two movable blocks
+//     exist (a partner as compliant as i: min(A_i, A_j)(c_i + c_j) <= 2 max(A_i c_i, A_j c_j)
+//     with A = kn / H · P + kt) or times 1 when i can only meet fixed blocks (c_j = 0), with the
+//     largest kn and kt of all interfaces. A block pressed by several neighbours at once can
+//     exceed a single pair's estimate; the monitor below stops such a run.
 // For the paper's sets (seed 000 Tables 4-5: rho 2000, E 0.1-1 GPa, kn 1e7-5e7 Pa, H ~ 1 m,
 // blocks ~1 m, dt 1e-5 ... 1e-3 s) the estimate is 0.7 ms for a deformable 1 m square with
 // E = 1 GPa (the strain modes limit it; the contact allows ~3.8 ms), above every listed dt.
@@ -90,7 +107,10 @@ enum class PlaneMode { stress, strain };
 
 struct BlockSpec {
   std::string id;                // non-empty, unique; names the block in every message
-  std::vector<Point2> vertices;  // CCW, strictly convex, m
+  // CCW, simple, no repeated or collinear vertex, m. A non-convex block is split exactly into
+  // convex parts (kernel::convex_partition) that share the block's DOF; see "Non-convex blocks".
+  std::vector<Point2> vertices;
+  std::string group;  // selects the ContactLaw::interfaces that apply to it ("" : none)
   Material material;
   bool fixed = false;  // a virtual polygon (§3.3): takes part in contact, never moves
   bool rigid = false;  // 3 DOF (u0, v0, r0): no strain terms
@@ -101,10 +121,21 @@ struct BlockSpec {
 // kt (N/m per metre of thickness) and friction_angle_deg (phi, degrees in [0, 90)).
 using FrictionLaw = contact::FrictionLaw;
 
+// The contact properties between blocks of two groups, replacing the defaults of ContactLaw
+// for every pair with one block in each (the order of `groups` does not matter).
+struct Interface {
+  std::array<std::string, 2> groups;
+  double kn = 1.0e7;                    // Pa, finite > 0
+  std::optional<FrictionLaw> friction;  // empty: frictionless
+};
+
 struct ContactLaw {
-  contact::PotentialContactParams normal;
+  contact::PotentialContactParams normal;  // kn, H and demarcation of every pair
   std::optional<FrictionLaw> friction;  // empty: frictionless, no tangential state is kept
   kernel::PolicyKind policy = kernel::PolicyKind::filtered;
+  // Per pair of groups: kn and friction (H and the demarcation stay those of `normal`). At most
+  // one interface per pair of groups.
+  std::vector<Interface> interfaces;
 };
 
 struct DdaParams {
@@ -112,6 +143,9 @@ struct DdaParams {
   Vector2 gravity{0.0, -9.81};       // m/s²
   PlaneMode plane = PlaneMode::stress;
   double mass_damping = 0.0;         // alpha of eq. 5c, 1/s, >= 0 (off by default, as in the paper)
+  // Threads of the contact pass (0: one per core). The result does not depend on it: every
+  // candidate pair is measured independently and the contacts are assembled in pair order.
+  std::size_t threads = 0;
 };
 
 struct BlockState {
@@ -131,6 +165,8 @@ struct BlockState {
 struct ContactState {
   std::size_t cp = 0;        // index of CP in blocks(): the lower index of the pair
   std::size_t tp = 0;        // index of TP: the higher
+  std::size_t cp_part = 0;   // convex part of CP (0 for a convex block)
+  std::size_t tp_part = 0;   // convex part of TP
   Point2 point;              // contact point pg, m
   Vector2 normal_force;      // on CP, N/m; on TP the opposite
   Vector2 friction_force;    // on CP, N/m; on TP the opposite; zero when frictionless
