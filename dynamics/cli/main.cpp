@@ -185,6 +185,35 @@ void add_run(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_run(*options); });
 }
 
+struct CutArgs {
+  std::string scene;
+  std::string output;
+};
+
+int run_cut(const CutArgs& options) {
+  const dyn::Scene scene = dyn::read_scene_file(options.scene);
+  if (scene.generated_count == 0) {  // a region always yields at least one block
+    std::cerr << "rockcontact: " << options.scene << ": region: the scene has no region to cut\n";
+    return exit_bad_input;
+  }
+  write_json(options.output, dyn::generated_blocks_json(scene));
+  std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
+  summary << scene.generated_count << " blocks cut from the region of " << options.scene;
+  if (options.output != "-") summary << ", written to " << options.output;
+  summary << '\n';
+  return exit_ok;
+}
+
+void add_cut(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<CutArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "cut", "Cut a scene's region by its joint sets and write the blocks as JSON");
+  sub->add_option("scene", options->scene, "Scene JSON with \"region\" and \"joint_sets\"")
+      ->required();
+  sub->add_option("-o,--output", options->output, "Blocks JSON ('-' for stdout)")->required();
+  sub->callback([options, &exit_status] { exit_status = run_cut(*options); });
+}
+
 struct ValidateArgs {
   bool quick = false;
   std::string out;
@@ -235,6 +264,7 @@ int main(int argc, char** argv) {
   int exit_status = exit_ok;
   add_pairs(app, exit_status);
   add_run(app, exit_status);
+  add_cut(app, exit_status);
   add_validate(app, exit_status);
   try {
     app.parse(argc, argv);

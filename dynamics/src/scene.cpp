@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "rockcontact/dynamics/json_read.hpp"
+#include "rockcontact/kernel/block_cutting.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 
 namespace rockcontact::dynamics {
@@ -27,7 +28,12 @@ constexpr JsonField scene_fields[] = {
     {"materials", true,
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
     {"contact", true, "an object {\"law\", \"kn\", \"H\", ...}"},
-    {"blocks", true, "a non-empty array of blocks {\"id\", \"material\", \"vertices\", ...}"},
+    {"blocks", false, "an array of blocks {\"id\", \"material\", \"vertices\", ...}"},
+    {"region", false,
+     "a region {\"vertices\", \"material\", \"group\", \"id_prefix\"} or an array of them, cut by "
+     "the joint sets"},
+    {"joint_sets", false, "an array of joint sets {\"dip_deg\", \"spacing\", ...}"},
+    {"interfaces", false, "an array of interfaces {\"between\": [group, group], ...}"},
     {"boundaries", false, "an array of boundary segments {\"id\", \"material\", \"from\", \"to\"}"},
     {"output", false, "an object {\"track\", \"every\"}"},
 };
@@ -56,6 +62,26 @@ constexpr JsonField block_fields[] = {
     {"fixed", false, "true or false"},
     {"rigid", false, "true or false"},
     {"velocity", false, "the centroid velocity [vx, vy, omega] in m/s, m/s, rad/s"},
+    {"group", false, "a group name (a string) that interfaces refer to"},
+};
+constexpr JsonField region_fields[] = {
+    {"vertices", true, "the region's polygon, an array of [x, y] vertices in m, CCW, simple"},
+    {"material", true, "the name of one of the scene's materials"},
+    {"group", false, "the group name of the generated blocks (a string)"},
+    {"id_prefix", false, "the prefix of the generated block ids (a string, default \"region\")"},
+};
+constexpr JsonField joint_set_fields[] = {
+    {"dip_deg", true, "the trace angle from +x, counter-clockwise, in degrees, a number in [0, 180)"},
+    {"spacing", true, "the spacing of the traces in m, a finite number > 0"},
+    {"offset", false, "the offset of the traces along their normal in m, a finite number"},
+    {"length", false, "the trace length in m, a finite number > 0 (default: persistent traces)"},
+    {"gap", false, "the gap between traces along a line in m, a finite number >= 0 (with length)"},
+};
+constexpr JsonField interface_fields[] = {
+    {"between", true, "the two groups [group, group] (strings; the order does not matter)"},
+    {"kn", false, "the normal penalty kn in Pa, a finite number > 0 (default contact.kn)"},
+    {"kt", false, "the tangential penalty kt in N/m, a finite number > 0 (default contact.kt)"},
+    {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
 };
 constexpr JsonField boundary_fields[] = {
     {"id", true, "a non-empty string, unique among blocks and boundaries"},
@@ -63,6 +89,7 @@ constexpr JsonField boundary_fields[] = {
     {"from", true, "the segment's first end [x, y] in m"},
     {"to", true, "the segment's second end [x, y] in m, not equal to from"},
     {"depth", false, "the depth of the fixed polygon behind the segment in m, a finite number > 0"},
+    {"group", false, "a group name (a string) that interfaces refer to"},
 };
 constexpr JsonField output_fields[] = {
     {"track", false, "an array of block ids"},
@@ -158,20 +185,105 @@ class SceneParser {
     }
   }
 
-  void blocks(const json& value, Scene& scene) const {
-    if (!value.is_array() || value.empty()) {
-      reader_.fail_expected("blocks", expected(scene_fields, "blocks"), value);
-    }
+  void blocks(const json& document, Scene& scene) const {
+    if (!document.contains("blocks")) return;
+    const json& value = document.at("blocks");
+    if (!value.is_array()) reader_.fail_expected("blocks", expected(scene_fields, "blocks"), value);
     std::unordered_map<std::string, std::size_t> first_index;
     for (std::size_t i = 0; i < value.size(); ++i) {
       const std::string path = json_element("blocks", i);
       scene.blocks.push_back(block(value[i], path));
+      scene.material_names.push_back(value[i].at("material").get<std::string>());
       const auto [it, inserted] = first_index.emplace(scene.blocks.back().id, i);
       if (!inserted) {
         reader_.fail(json_child(path, "id"), "duplicate id \"" + scene.blocks.back().id +
                                                  "\" (also " + json_element("blocks", it->second) +
                                                  ".id); expected ids unique within the scene");
       }
+    }
+  }
+
+  // Each region cut by the joint sets (kernel::cut_region), appended to the blocks as
+  // "<id_prefix>_<k>", k from 1 in the kernel's order.
+  void regions(const json& document, Scene& scene) const {
+    if (!document.contains("region")) {
+      if (document.contains("joint_sets")) {
+        reader_.fail("joint_sets", "joint sets cut a region; expected a \"region\" beside them");
+      }
+      return;
+    }
+    const std::vector<kernel::JointSet> sets = joint_sets(document);
+    const json& value = document.at("region");
+    scene.generated_first = scene.blocks.size();
+    if (value.is_array()) {
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        region(value[i], json_element("region", i), sets, scene);
+      }
+    } else {
+      region(value, "region", sets, scene);
+    }
+    scene.generated_count = scene.blocks.size() - scene.generated_first;
+  }
+
+  void region(const json& value, const std::string& path, std::span<const kernel::JointSet> sets,
+              Scene& scene) const {
+    reader_.check_object(value, path, expected(scene_fields, "region"), region_fields);
+    const std::vector<kernel::Point2> outline = reader_.polygon(
+        value.at("vertices"), json_child(path, "vertices"), expected(region_fields, "vertices"));
+    const Material material = material_of(value.at("material"), json_child(path, "material"));
+    std::string group, prefix = "region";
+    if (value.contains("group")) {
+      group = reader_.string(value.at("group"), json_child(path, "group"),
+                             expected(region_fields, "group"));
+    }
+    if (value.contains("id_prefix")) {
+      prefix = reader_.string(value.at("id_prefix"), json_child(path, "id_prefix"),
+                              expected(region_fields, "id_prefix"));
+    }
+    std::vector<std::vector<kernel::Point2>> pieces;
+    try {
+      pieces = kernel::cut_region(outline, sets);
+    } catch (const kernel::InvalidCut& e) {
+      reader_.fail(path, e.what());
+    }
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      BlockSpec spec;
+      spec.id = prefix + "_" + std::to_string(k + 1);
+      const bool taken = std::any_of(scene.blocks.begin(), scene.blocks.end(),
+                                     [&](const BlockSpec& b) { return b.id == spec.id; });
+      if (taken) {
+        reader_.fail(json_child(path, "id_prefix"),
+                     "the generated id \"" + spec.id +
+                         "\" is also a block's; expected a prefix no other block id uses");
+      }
+      spec.material = material;
+      spec.group = group;
+      spec.vertices = std::move(pieces[k]);
+      scene.blocks.push_back(std::move(spec));
+      scene.material_names.push_back(value.at("material").get<std::string>());
+    }
+  }
+
+  // Per pair of groups; what an interface leaves out comes from "contact".
+  void interfaces(const json& document, Scene& scene) const {
+    if (!document.contains("interfaces")) return;
+    const json& value = document.at("interfaces");
+    if (!value.is_array()) {
+      reader_.fail_expected("interfaces", expected(scene_fields, "interfaces"), value);
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      const std::string path = json_element("interfaces", i);
+      Interface face = interface(value[i], path, scene.law);
+      for (std::size_t k = 0; k < i; ++k) {
+        const auto& other = scene.law.interfaces[k].groups;
+        if (std::minmax(other[0], other[1]) == std::minmax(face.groups[0], face.groups[1])) {
+          reader_.fail(json_child(path, "between"),
+                       "the groups \"" + face.groups[0] + "\" and \"" + face.groups[1] +
+                           "\" already have an interface (" + json_element("interfaces", k) +
+                           "); expected one per pair of groups");
+        }
+      }
+      scene.law.interfaces.push_back(std::move(face));
     }
   }
 
@@ -193,6 +305,7 @@ class SceneParser {
                                                  "\"; expected ids unique among blocks and boundaries");
       }
       scene.blocks.push_back(std::move(spec));
+      scene.material_names.push_back(value[i].at("material").get<std::string>());
     }
   }
 
@@ -303,6 +416,10 @@ class SceneParser {
       spec.rigid = reader_.boolean(value.at("rigid"), json_child(path, "rigid"),
                                    expected(block_fields, "rigid"));
     }
+    if (value.contains("group")) {
+      spec.group = reader_.string(value.at("group"), json_child(path, "group"),
+                                  expected(block_fields, "group"));
+    }
     if (value.contains("velocity")) {
       const std::string velocity_path = json_child(path, "velocity");
       const auto v = reader_.numbers(value.at("velocity"), velocity_path, 3,
@@ -317,6 +434,93 @@ class SceneParser {
     return spec;
   }
 
+  std::vector<kernel::JointSet> joint_sets(const json& document) const {
+    std::vector<kernel::JointSet> sets;
+    if (!document.contains("joint_sets")) return sets;
+    const json& value = document.at("joint_sets");
+    if (!value.is_array()) {
+      reader_.fail_expected("joint_sets", expected(scene_fields, "joint_sets"), value);
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      sets.push_back(joint_set(value[i], json_element("joint_sets", i)));
+    }
+    return sets;
+  }
+
+  kernel::JointSet joint_set(const json& item, const std::string& path) const {
+    reader_.check_object(item, path, "a joint set {\"dip_deg\", \"spacing\", ...}", joint_set_fields);
+    kernel::JointSet set;
+    const std::string dip_path = json_child(path, "dip_deg");
+    const std::string_view dip_expected = expected(joint_set_fields, "dip_deg");
+    set.dip_deg = reader_.non_negative(item.at("dip_deg"), dip_path, dip_expected);
+    if (!(set.dip_deg < 180.0)) reader_.fail_expected(dip_path, dip_expected, item.at("dip_deg"));
+    set.spacing = reader_.positive(item.at("spacing"), json_child(path, "spacing"),
+                                   expected(joint_set_fields, "spacing"));
+    if (item.contains("offset")) {
+      set.offset = reader_.number(item.at("offset"), json_child(path, "offset"),
+                                  expected(joint_set_fields, "offset"));
+    }
+    if (item.contains("length")) {
+      set.trace_length = reader_.positive(item.at("length"), json_child(path, "length"),
+                                          expected(joint_set_fields, "length"));
+    }
+    if (item.contains("gap")) {
+      if (!item.contains("length")) {
+        reader_.fail(json_child(path, "gap"),
+                     "a gap separates traces of finite length; expected \"length\" beside it");
+      }
+      set.gap = reader_.non_negative(item.at("gap"), json_child(path, "gap"),
+                                     expected(joint_set_fields, "gap"));
+    }
+    return set;
+  }
+
+  Interface interface(const json& value, const std::string& path, const ContactLaw& law) const {
+    reader_.check_object(value, path,
+                         "an interface {\"between\", \"kn\", \"kt\", \"friction_angle_deg\"}",
+                         interface_fields);
+    Interface face;
+    const json& groups = value.at("between");
+    if (!groups.is_array() || groups.size() != 2 || !groups[0].is_string() ||
+        !groups[1].is_string()) {
+      reader_.fail_expected(json_child(path, "between"), expected(interface_fields, "between"),
+                            groups);
+    }
+    face.groups = {groups[0].get<std::string>(), groups[1].get<std::string>()};
+    face.kn = value.contains("kn") ? reader_.positive(value.at("kn"), json_child(path, "kn"),
+                                                      expected(interface_fields, "kn"))
+                                   : law.normal.kn;
+    face.friction = law.friction;
+    if (!value.contains("kt") && !value.contains("friction_angle_deg")) return face;
+    FrictionLaw friction = law.friction.value_or(FrictionLaw{});
+    friction.kt = interface_value(value, path, "kt", law.friction.has_value(), friction.kt);
+    friction.friction_angle_deg = interface_value(value, path, "friction_angle_deg",
+                                                  law.friction.has_value(), friction.friction_angle_deg);
+    if (!(friction.friction_angle_deg < 90.0)) {
+      reader_.fail_expected(json_child(path, "friction_angle_deg"),
+                            expected(interface_fields, "friction_angle_deg"),
+                            value.at("friction_angle_deg"));
+    }
+    face.friction = friction;
+    return face;
+  }
+
+  // kt or friction_angle_deg of an interface: its own (finite, >= 0; kt > 0), else the scene's.
+  double interface_value(const json& value, const std::string& path, std::string_view field,
+                         bool has_default, double fallback) const {
+    const std::string field_path = json_child(path, field);
+    const std::string_view what = expected(interface_fields, field);
+    if (!value.contains(field)) {
+      if (!has_default) {
+        reader_.fail(field_path, "missing field; expected " + std::string(what) +
+                                     " (the scene's contact is frictionless: nothing to fall back on)");
+      }
+      return fallback;
+    }
+    return field == "kt" ? reader_.positive(value.at(field), field_path, what)
+                         : reader_.non_negative(value.at(field), field_path, what);
+  }
+
   BlockSpec boundary(const json& value, const std::string& path) const {
     reader_.check_object(value, path,
                          "a boundary segment, an object {\"id\", \"material\", \"from\", \"to\"}",
@@ -327,6 +531,10 @@ class SceneParser {
     if (spec.id.empty()) reader_.fail_expected(id_path, expected(boundary_fields, "id"), value.at("id"));
     spec.material = material_of(value.at("material"), json_child(path, "material"));
     spec.fixed = true;
+    if (value.contains("group")) {
+      spec.group = reader_.string(value.at("group"), json_child(path, "group"),
+                                  expected(boundary_fields, "group"));
+    }
     const auto from = reader_.numbers(value.at("from"), json_child(path, "from"), 2,
                                       expected(boundary_fields, "from"));
     const auto to = reader_.numbers(value.at("to"), json_child(path, "to"), 2,
@@ -375,11 +583,26 @@ class SceneParser {
     try {
       kernel::ConvexPolygon::make("block '" + id + "'", vertices, kernel::VertexOrder::require_ccw);
     } catch (const kernel::InvalidPolygon& e) {
+      if (e.reason() == kernel::InvalidPolygon::Reason::not_convex) {
+        simple_non_convex(vertices, path, id);
+        return vertices;
+      }
       reader_.fail(
           e.vertex() >= 0 ? json_element(path, static_cast<std::size_t>(e.vertex())) : path,
           e.what());
     }
     return vertices;
+  }
+
+  // A non-convex block is allowed when it is simple and CCW (the engine partitions it).
+  void simple_non_convex(const std::vector<kernel::Point2>& vertices, const std::string& path,
+                         const std::string& id) const {
+    try {
+      kernel::convex_partition(vertices);
+    } catch (const kernel::InvalidCut& e) {
+      reader_.fail(path, "block '" + id + "' is not convex, and not a simple CCW polygon either (" +
+                             e.what() + ")");
+    }
   }
 
   void track(const json& value, Scene& scene) const {
@@ -492,7 +715,12 @@ double inscribed_radius(std::span<const kernel::Point2> polygon) {
 
 double smallest_inscribed_radius(std::span<const BlockSpec> blocks) {
   double smallest = std::numeric_limits<double>::infinity();
-  for (const BlockSpec& b : blocks) smallest = std::min(smallest, inscribed_radius(b.vertices));
+  for (const BlockSpec& b : blocks) {
+    const std::vector<std::vector<kernel::Point2>> parts = kernel::convex_partition(b.vertices);
+    double largest = 0.0;
+    for (const auto& part : parts) largest = std::max(largest, inscribed_radius(part));
+    smallest = std::min(smallest, largest);
+  }
   return smallest;
 }
 
@@ -514,11 +742,32 @@ Scene parse_scene(const json& document, const std::string& source_name) {
   parser.physics(document, scene);
   parser.materials(document.at("materials"));
   parser.contact(document.at("contact"), scene);
-  parser.blocks(document.at("blocks"), scene);
+  parser.blocks(document, scene);
+  parser.regions(document, scene);
+  if (scene.blocks.empty()) {
+    reader.fail("blocks", "the scene has no blocks; expected \"blocks\" or a \"region\"");
+  }
   parser.resolve_h(scene);  // from the blocks only: a boundary's depth is a construction aid
   parser.boundaries(document, scene);
+  parser.interfaces(document, scene);
   parser.output(document, scene);
   return scene;
+}
+
+nlohmann::ordered_json generated_blocks_json(const Scene& scene) {
+  nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
+  for (std::size_t i = scene.generated_first; i < scene.generated_first + scene.generated_count; ++i) {
+    const BlockSpec& b = scene.blocks[i];
+    nlohmann::ordered_json block;
+    block["id"] = b.id;
+    block["material"] = scene.material_names[i];
+    if (!b.group.empty()) block["group"] = b.group;
+    nlohmann::ordered_json vertices = nlohmann::ordered_json::array();
+    for (const kernel::Point2& p : b.vertices) vertices.push_back({p.x, p.y});
+    block["vertices"] = std::move(vertices);
+    blocks.push_back(std::move(block));
+  }
+  return {{"blocks", std::move(blocks)}};
 }
 
 Scene read_scene_file(const std::filesystem::path& file) {

@@ -3,6 +3,7 @@
 
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <array>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/kernel/block_cutting.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;
@@ -265,9 +267,11 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
 }
 
 BOOST_AUTO_TEST_CASE(block_errors) {
-  expect_error([](json& d) { d["blocks"] = json::array(); }, "blocks", "a non-empty array");
+  expect_error([](json& d) { d["blocks"] = json::array(); }, "blocks",
+               R"(the scene has no blocks; expected "blocks" or a "region")");
+  expect_error([](json& d) { d["blocks"] = json::object(); }, "blocks", "an array of blocks");
   expect_error([](json& d) { d["blocks"][1]["colour"] = "red"; }, "blocks[1].colour",
-               "unknown field; expected only id, material, vertices, fixed, rigid, velocity");
+               "unknown field; expected only id, material, vertices, fixed, rigid, velocity, group");
   expect_error([](json& d) { d["blocks"][1].erase("vertices"); }, "blocks[1].vertices",
                "missing field");
   expect_error([](json& d) { d["blocks"][1]["vertices"][2] = {2}; }, "blocks[1].vertices[2]",
@@ -438,4 +442,125 @@ BOOST_AUTO_TEST_CASE(block_rests_on_a_floor_segment_at_its_static_penetration) {
   const kernel::Point2 end = sim.blocks()[0].centroid;
   BOOST_TEST(sim.contacts().size() == 1u);
   BOOST_TEST(std::hypot(end.x - start.x, end.y - start.y) <= 1e-3 * delta);
+}
+
+// A region cut by two joint sets (kernel/block_cutting.hpp): the 10 m square [0, 10]² with
+// traces every 2.5 m at 0° and 90° gives 16 squares of 2.5 m, named "<id_prefix>_<k>", in the
+// region's material and group, after the explicit blocks; every edge is 2.5 m, so the mean-edge
+// H of the generated blocks alone is 2.5 m (the explicit block below has edges of 1 m and
+// moves the mean to (16·4·2.5 + 4·1) / 68).
+BOOST_AUTO_TEST_CASE(region_is_cut_by_the_joint_sets) {
+  json document = minimal_scene();
+  document["blocks"] = json::array({document["blocks"][1]});
+  document["region"] = json::parse(R"({"vertices": [[0, 2], [10, 2], [10, 12], [0, 12]],
+                                       "material": "soft", "group": "rock", "id_prefix": "r"})");
+  document["joint_sets"] = json::parse(R"([{"dip_deg": 0, "spacing": 2.5, "offset": 2},
+                                           {"dip_deg": 90, "spacing": 2.5}])");
+  const dyn::Scene scene = dyn::parse_scene(document, "region.json");
+  BOOST_TEST_REQUIRE(scene.blocks.size() == 17u);
+  BOOST_TEST(scene.generated_first == 1u);
+  BOOST_TEST(scene.generated_count == 16u);
+  double area = 0.0;
+  for (std::size_t i = 1; i < 17; ++i) {
+    const dyn::BlockSpec& b = scene.blocks[i];
+    BOOST_TEST(b.id == "r_" + std::to_string(i));
+    BOOST_TEST(b.group == "rock");
+    BOOST_TEST(scene.material_names[i] == "soft");
+    BOOST_TEST(b.vertices.size() == 4u);
+    area += rockcontact::kernel::polygon_area(b.vertices);
+  }
+  BOOST_TEST(area == 100.0);  // 16 exact squares of 6.25 m²
+  BOOST_TEST(scene.law.normal.H == (16.0 * 4.0 * 2.5 + 4.0) / 68.0, boost::test_tools::tolerance(1e-15));
+
+  // `rockcontact cut` output: the generated blocks in the scene format, which read back as the
+  // same blocks when pasted into "blocks".
+  const nlohmann::ordered_json cut = dyn::generated_blocks_json(scene);
+  BOOST_TEST_REQUIRE(cut.at("blocks").size() == 16u);
+  json pasted = minimal_scene();
+  pasted["blocks"] = json::parse(cut.dump()).at("blocks");
+  const dyn::Scene again = dyn::parse_scene(pasted, "pasted.json");
+  for (std::size_t i = 0; i < 16; ++i) {
+    BOOST_TEST(again.blocks[i].id == scene.blocks[i + 1].id);
+    BOOST_TEST(again.blocks[i].group == "rock");
+    for (std::size_t k = 0; k < 4; ++k) {
+      BOOST_TEST(again.blocks[i].vertices[k].x == scene.blocks[i + 1].vertices[k].x);
+      BOOST_TEST(again.blocks[i].vertices[k].y == scene.blocks[i + 1].vertices[k].y);
+    }
+  }
+}
+
+// A non-convex block (an L) is accepted as it is (the engine splits it); one that is not simple
+// is an error naming the block and the vertices path.
+BOOST_AUTO_TEST_CASE(non_convex_blocks_are_accepted_when_simple) {
+  json document = contract_scene();
+  document["blocks"][1]["vertices"] = json::parse("[[1,1],[3,1],[3,2],[2,2],[2,3],[1,3]]");
+  const dyn::Scene scene = dyn::parse_scene(document, "l.json");
+  BOOST_TEST(scene.blocks[1].vertices.size() == 6u);
+  expect_error([](json& d) { d["blocks"][1]["vertices"] = json::parse("[[1,1],[3,3],[3,1],[1,3]]"); },
+               "blocks[1].vertices", "block 'slider' is not convex, and not a simple CCW polygon either");
+}
+
+// Interfaces take what they leave out from "contact".
+BOOST_AUTO_TEST_CASE(interfaces_fall_back_on_the_contact_defaults) {
+  json document = contract_scene();
+  document["interfaces"] = json::parse(R"([{"between": ["rock", "boundary"], "friction_angle_deg": 35},
+                                           {"between": ["rock", "rock"], "kn": 2e7, "kt": 5e6}])");
+  const dyn::Scene scene = dyn::parse_scene(document, "interfaces.json");
+  BOOST_TEST_REQUIRE(scene.law.interfaces.size() == 2u);
+  const dyn::Interface& a = scene.law.interfaces[0];
+  const dyn::Interface& b = scene.law.interfaces[1];
+  BOOST_TEST((a.groups == std::array<std::string, 2>{"rock", "boundary"}));
+  BOOST_TEST(a.kn == 1e7);
+  BOOST_TEST_REQUIRE(a.friction.has_value());
+  BOOST_TEST(a.friction->kt == 1e7);
+  BOOST_TEST(a.friction->friction_angle_deg == 35.0);
+  BOOST_TEST(b.kn == 2e7);
+  BOOST_TEST_REQUIRE(b.friction.has_value());
+  BOOST_TEST(b.friction->kt == 5e6);
+  BOOST_TEST(b.friction->friction_angle_deg == 10.0);
+}
+
+BOOST_AUTO_TEST_CASE(region_joint_set_and_interface_errors) {
+  const auto with = [](const char* field, const char* text) {
+    return [field, text](json& d) { d[field] = json::parse(text); };
+  };
+  expect_error(with("joint_sets", R"([{"dip_deg": 0, "spacing": 1}])"), "joint_sets",
+               R"(joint sets cut a region; expected a "region" beside them)");
+  expect_error(with("region", R"({"vertices": [[0,0],[0,1],[1,1],[1,0]], "material": "rock"})"),
+               "region", "clockwise");
+  expect_error(with("region", R"({"vertices": [[0,0],[1,0],[1,1]], "material": "granite"})"),
+               "region.material", R"(unknown material "granite")");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["id"] = "region_1";
+        d["region"] = json::parse(R"({"vertices": [[0,0],[1,0],[1,1]], "material": "rock"})");
+      },
+      "region.id_prefix", R"(the generated id "region_1" is also a block's)");
+  expect_error(with("region", R"([{"vertices": [[0,0],[1,0],[1,1]], "material": "rock", "colour": 1}])"),
+               "region[0].colour", "unknown field; expected only vertices, material, group, id_prefix");
+  const auto with_set = [](const char* text) {
+    return [text](json& d) {
+      d["region"] = json::parse(R"({"vertices": [[0,0],[4,0],[4,4],[0,4]], "material": "rock"})");
+      d["joint_sets"] = json::array({json::parse(text)});
+    };
+  };
+  expect_error(with_set(R"({"dip_deg": 180, "spacing": 1})"), "joint_sets[0].dip_deg", "in [0, 180)");
+  expect_error(with_set(R"({"dip_deg": 10, "spacing": 0})"), "joint_sets[0].spacing", "> 0");
+  expect_error(with_set(R"({"dip_deg": 10, "spacing": 1, "gap": 1})"), "joint_sets[0].gap",
+               R"(expected "length" beside it)");
+  expect_error(with("interfaces", R"([{"between": ["a"]}])"), "interfaces[0].between",
+               "the two groups [group, group]");
+  expect_error(with("interfaces", R"([{"between": ["a", "b"], "mu": 1}])"), "interfaces[0].mu",
+               "unknown field; expected only between, kn, kt, friction_angle_deg");
+  expect_error(with("interfaces", R"([{"between": ["a", "b"]}, {"between": ["b", "a"]}])"),
+               "interfaces[1].between", "already have an interface (interfaces[0])");
+  expect_error(with("interfaces", R"([{"between": ["a", "b"], "friction_angle_deg": 90}])"),
+               "interfaces[0].friction_angle_deg", "in [0, 90)");
+  expect_error(
+      [](json& d) {
+        d["contact"].erase("kt");
+        d["contact"].erase("friction_angle_deg");
+        d["interfaces"] = json::parse(R"([{"between": ["a", "b"], "friction_angle_deg": 20}])");
+      },
+      "interfaces[0].kt", "the scene's contact is frictionless");
 }

@@ -17,12 +17,26 @@
 //                "policy": "float" | "filtered" | "exact"          (optional, default filtered)
 //                "demarcation": "paper" | "exact"},                (optional, default exact)
 //    "blocks": [{"id": unique string, "material": a name of "materials",
-//                "vertices": [[x, y], ...] m, CCW, strictly convex,
+//                "vertices": [[x, y], ...] m, CCW, simple, no collinear vertex (a
+//                            non-convex block is split into convex parts by the engine),
+//                "group": a name interfaces refer to (default ""),
 //                "fixed": bool (default false), "rigid": bool (default false),
 //                "velocity": [vx, vy, omega] m/s, m/s, rad/s of the centroid (default 0;
 //                            not allowed on a fixed block)}, ...],
+//                                                         (optional when "region" is given)
+//    "region": {"vertices": [[x, y], ...] m, CCW, simple, "material": a name,
+//               "group": a name (default ""), "id_prefix": text (default "region")}
+//              or an array of such regions                (optional; blocks "<id_prefix>_<k>")
+//    "joint_sets": [{"dip_deg": [0, 180) degrees from +x, CCW, "spacing": m > 0,
+//                    "offset": m (default 0), "length": m > 0 (default persistent),
+//                    "gap": m >= 0 (with length)}, ...]    (optional, with "region";
+//                                                          kernel/block_cutting.hpp)
+//    "interfaces": [{"between": [group, group], "kn": Pa > 0, "kt": N/m > 0,
+//                    "friction_angle_deg": [0, 90)}, ...] (optional; what an interface
+//                                                          leaves out comes from "contact")
 //    "boundaries": [{"id": unique among blocks and boundaries, "material": a name,
-//                    "from": [x, y] m, "to": [x, y] m, "depth": m > 0 (default |to - from|)},
+//                    "from": [x, y] m, "to": [x, y] m, "depth": m > 0 (default |to - from|),
+//                    "group": a name (default "")},
 //                   ...]                                  (optional; seed 000 §3.3)
 //    "output": {"track": [block ids] (default: every block that is not fixed),
 //               "every": steps >= 1 (default 100)}}                (optional)
@@ -43,8 +57,9 @@
 //   "inscribed"  the paper's "previous approach" (§5.1) used each block's inscribed-circle
 //                radius as its own H. Our contact law takes one H per scene, so this is the
 //                smallest inscribed radius over all blocks (fixed ones included, boundary
-//                segments not): the stiffest
-//                of the per-block potentials, the one that sets the stability limit.
+//                segments not): the stiffest of the per-block potentials, the one that sets
+//                the stability limit. A non-convex block counts with the largest inscribed
+//                radius of its convex parts (a lower bound of its own).
 //
 // Polygons are validated here (kernel::ConvexPolygon) so that a bad vertex is reported with the
 // file and the path "blocks[i].vertices[k]", the kernel's message naming the block id.
@@ -68,7 +83,11 @@ std::string_view to_string(HRule rule);
 struct Scene {
   std::string source;       // the file it came from, for messages and the summary
   std::string description;  // free text, may be empty
+  // Explicit blocks, then the blocks cut from the region, then the boundary segments' polygons.
   std::vector<BlockSpec> blocks;
+  std::vector<std::string> material_names;  // of each block, by index
+  std::size_t generated_first = 0;          // the blocks cut from the region:
+  std::size_t generated_count = 0;          // blocks[generated_first, + generated_count)
   ContactLaw law;  // law.normal.H already resolved from h_rule
   DdaParams params;
   double duration = 0.0;  // s
@@ -96,6 +115,11 @@ double smallest_inscribed_radius(std::span<const BlockSpec> blocks);
 
 // Throws InputError ("<source>: <path>: ...") for anything the format above does not allow.
 Scene parse_scene(const nlohmann::json& document, const std::string& source_name);
+
+// {"blocks": [...]} with the blocks cut from the scene's region, in the scene format
+// ("id", "material", "group" when not empty, "vertices" with every double round-tripping), so
+// they can be inspected, edited and pasted into a scene's "blocks".
+nlohmann::ordered_json generated_blocks_json(const Scene& scene);
 
 // Reads and parses a file; InputError also for an unreadable file or malformed JSON.
 Scene read_scene_file(const std::filesystem::path& file);
