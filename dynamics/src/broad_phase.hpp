@@ -1,12 +1,18 @@
 #pragma once
 // Candidate contact pairs of a 2D block assembly. Internal to rockcontact_dynamics.
 //
-// Sweep and prune on x: blocks sorted by the left end of their axis-aligned bounding box; each
-// block is paired with the following ones whose left end does not pass its right end, and the
-// pair is kept when the boxes also overlap in y. Boxes are closed, so touching boxes pair up
-// (touching blocks may overlap by the next step). The order is kept from call to call, so a
-// slowly moving assembly re-sorts a nearly sorted list. Pairs of two fixed blocks are skipped:
-// they never interact.
+// A uniform grid: the cell is the largest box extent of a movable block (so a movable block
+// covers at most 2 x 2 cells), doubled until the grid over the assembly's bounding box has at
+// most 4 n + 16 cells (blocks spread far apart, e.g. a long runout, would otherwise ask for a
+// huge grid). Every box is entered in the cells it covers by a counting sort, and each cell
+// pairs its members; a pair whose boxes share several cells is reported only by the cell that
+// holds the lower-left corner of the boxes' intersection, so there is no duplicate to remove.
+// Boxes are closed, so touching boxes pair up (touching blocks may overlap by the next step).
+// Pairs of two fixed blocks are skipped: they never interact. Cost per call: O(n + cells +
+// entries + pairs checked), linear in n for blocks of similar size (a sweep along x was
+// O(n sqrt n) on a block assembly stacked in columns: each block swept a whole column). A large
+// fixed block is entered in every cell it covers; a movable block much larger than the rest
+// makes the cells coarse and the per-cell work quadratic in its members.
 
 #include <cstddef>
 #include <span>
@@ -22,13 +28,24 @@ struct BroadPhaseBox {
 
 using BlockPair = std::pair<std::size_t, std::size_t>;  // (i, j), i < j
 
-class SweepAndPrune {
+class UniformGrid {
  public:
   // Replaces `pairs` with the candidate pairs, sorted, each as (lower index, higher index).
   void find_pairs(std::span<const BroadPhaseBox> boxes, std::vector<BlockPair>& pairs);
 
  private:
-  std::vector<std::size_t> order_;
+  struct Layout {
+    double x0 = 0.0, y0 = 0.0, cell = 1.0;  // m
+    std::size_t nx = 1, ny = 1;
+    std::size_t column(double x) const;
+    std::size_t row(double y) const;
+  };
+  Layout layout(std::span<const BroadPhaseBox> boxes) const;
+  void fill(std::span<const BroadPhaseBox> boxes, const Layout& grid);
+
+  std::vector<std::size_t> start_;    // per cell: first entry in members_ (counting sort)
+  std::vector<std::size_t> members_;  // box indices, cell by cell
+  std::vector<std::size_t> scratch_;  // fill cursor per cell
 };
 
 // Every pair (i, j), i < j, with at least one block not fixed, in order: for a handful of

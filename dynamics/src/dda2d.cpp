@@ -24,7 +24,7 @@ namespace {
 using detail::BlockPair;
 using detail::Vector6;
 
-// Above this many blocks the candidate pairs come from sweep and prune; below, every pair is
+// Above this many blocks the candidate pairs come from the uniform grid; below, every pair is
 // tried (the broad phase would cost more than it saves).
 constexpr std::size_t broad_phase_threshold = 8;
 // Stability monitor (dda2d.hpp): growth bound factor, floor speed (m/s), penetration fraction.
@@ -249,7 +249,7 @@ struct Dda2d::Impl {
   std::vector<PartContact> candidates;
   std::vector<PairScratch> thread_scratch;  // one per thread
   int thread_count = 1;
-  detail::SweepAndPrune sweep;
+  detail::UniformGrid grid;
   std::vector<BlockPair> pairs;
   std::vector<detail::BroadPhaseBox> boxes;
   std::vector<Point2> scratch;
@@ -513,7 +513,7 @@ void Dda2d::Impl::candidate_pairs() {
     }
   }
   if (!small) {
-    sweep.find_pairs(boxes, pairs);
+    grid.find_pairs(boxes, pairs);
   } else if (pairs.empty()) {
     detail::all_pairs(boxes, pairs);  // every pair, fixed once
   }

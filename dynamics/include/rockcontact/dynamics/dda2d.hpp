@@ -3,7 +3,7 @@
 //
 // Each block carries d = (u0, v0, r0, ex, ey, gxy) (eq. 2): centroid translation, rotation and
 // constant strain, with u(x, y) = T(x, y) d (eq. 3). Per step, from t_n to t_n+1 = t_n + h:
-//   1. contacts: broad phase (sweep and prune on x above 8 blocks, every pair below) ->
+//   1. contacts: broad phase (a uniform grid above 8 blocks, every pair below) ->
 //      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp),
 //      measured for all candidate pairs in parallel (OpenMP), then assembled in pair order;
 //      tangential force by Coulomb stick/slide on the accumulated relative displacement of pg
