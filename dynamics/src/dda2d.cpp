@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <map>
 #include <set>
@@ -31,8 +32,8 @@ constexpr std::size_t broad_phase_threshold = 8;
 constexpr double energy_growth_factor = 2.0;
 constexpr double energy_floor_speed = 1.0e-3;
 constexpr double penetration_fraction = 0.5;
-// Below this many candidate pairs the contact pass runs on the calling thread only: starting the
-// workers would cost more than it saves.
+// Below this many candidate pairs (or blocks) a parallel pass runs on the calling thread only:
+// starting the workers would cost more than it saves.
 constexpr std::ptrdiff_t parallel_threshold = 64;
 
 std::string number(double x) {
@@ -187,6 +188,7 @@ struct Body {
   Vector6 contact_force{};      // its contact part
   Vector6 acceleration{};       // M^-1 force
   Vector6 increment{};          // Δd of the last step
+  double damped = 0.0;          // kinetic energy the mass damping took in this step, J/m
 };
 
 }  // namespace
@@ -226,6 +228,8 @@ struct Dda2d::Impl {
   Vector2 point_increment(std::size_t i, Point2 p) const;
   void move(std::size_t i);
   void check_state();
+  template <class F>
+  void for_each_movable(F&& body);
   double kinetic(std::size_t i, const std::array<double, 6>& v) const;
   std::string at_step() const;
 
@@ -442,7 +446,8 @@ void Dda2d::Impl::estimate_critical_step() {
 void Dda2d::Impl::refresh(std::size_t i) {
   Body& b = bodies[i];
   BlockState& s = states[i];
-  const detail::CentralMoments m = detail::central_moments(s.vertices, scratch);
+  thread_local std::vector<Point2> shifted;  // refresh runs on the worker threads
+  const detail::CentralMoments m = detail::central_moments(s.vertices, shifted);
   s.area = m.area;
   s.centroid = m.centroid;
   if (s.rigid) {
@@ -473,11 +478,10 @@ void Dda2d::Impl::evaluate_forces() {
     }
   }
   kernel::with_policy(law.policy, [&](auto policy) { evaluate_contacts<decltype(policy)>(); });
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (states[i].fixed) continue;
+  for_each_movable([this](std::size_t i) {
     for (std::size_t k = 0; k < 6; ++k) bodies[i].force[k] += bodies[i].contact_force[k];
     solve_acceleration(i);
-  }
+  });
 }
 
 namespace {
@@ -667,6 +671,32 @@ void Dda2d::Impl::solve_acceleration(std::size_t i) {
 
 // ---- the step ----------------------------------------------------------------------------
 
+// Runs body(i) for every block that is not fixed, spread over the threads when there are many.
+// Each call touches its own block only. An exception leaves the loop as the one of the lowest
+// block index that threw, whatever the thread count.
+template <class F>
+void Dda2d::Impl::for_each_movable(F&& body) {
+  const auto n = static_cast<std::ptrdiff_t>(bodies.size());
+  const int threads = n >= parallel_threshold ? thread_count : 1;
+  std::exception_ptr error;
+  std::ptrdiff_t error_at = n;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    if (states[i].fixed) continue;
+    try {
+      body(i);
+    } catch (...) {
+#pragma omp critical(rockcontact_dda2d_block_error)
+      if (k < error_at) {
+        error_at = k;
+        error = std::current_exception();
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
 double Dda2d::Impl::kinetic(std::size_t i, const std::array<double, 6>& v) const {
   const BlockState& s = states[i];
   double e = 0.5 * s.mass * (v[0] * v[0] + v[1] * v[1]);
@@ -685,7 +715,7 @@ void Dda2d::Impl::first_half_kick(std::size_t i) {
     const double damp = half * params.mass_damping;
     std::array<double, 6> damped;
     for (std::size_t k = 0; k < 6; ++k) damped[k] = kicked[k] - damp * v[k];
-    damping_dissipated += kinetic(i, kicked) - kinetic(i, damped);
+    bodies[i].damped += kinetic(i, kicked) - kinetic(i, damped);
     kicked = damped;
   }
   v = kicked;
@@ -700,7 +730,7 @@ void Dda2d::Impl::second_half_kick(std::size_t i) {
   if (params.mass_damping > 0.0) {
     const double before = kinetic(i, v);
     for (double& x : v) x /= 1.0 + half * params.mass_damping;
-    damping_dissipated += before - kinetic(i, v);
+    bodies[i].damped += before - kinetic(i, v);
   }
 }
 
@@ -719,6 +749,7 @@ Vector2 Dda2d::Impl::point_increment(std::size_t i, Point2 p) const {
 
 void Dda2d::Impl::advance_friction_records() {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
+    if (contact_records[k] == nullptr) continue;  // a frictionless interface
     const ContactState& c = contacts[k];
     const Vector2 a = point_increment(c.cp, c.point), b = point_increment(c.tp, c.point);
     const Vector2 relative{a.x - b.x, a.y - b.y};
@@ -813,19 +844,15 @@ void Dda2d::Impl::advance() {
   // Messages during the step name the step being taken and the time it reaches.
   ++steps;
   time = static_cast<double>(steps) * params.dt;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!states[i].fixed) first_half_kick(i);
-  }
+  for (Body& b : bodies) b.damped = 0.0;
+  for_each_movable([this](std::size_t i) { first_half_kick(i); });
   for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
-  if (law.friction) advance_friction_records();
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!states[i].fixed) move(i);
-  }
+  advance_friction_records();
+  for_each_movable([this](std::size_t i) { move(i); });
   evaluate_forces();
   for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!states[i].fixed) second_half_kick(i);
-  }
+  for_each_movable([this](std::size_t i) { second_half_kick(i); });
+  for (const Body& b : bodies) damping_dissipated += b.damped;  // in block order: deterministic
   check_state();
 }
 
