@@ -559,6 +559,36 @@ BOOST_AUTO_TEST_CASE(non_overlapping_pairs_have_no_force) {
   }
 }
 
+// (f) Two neighbours from a joint-set cut (seed 000 §6.1 geometry) whose shared edge ends at
+// vertices rounded independently: the exact predicates find a genuine overlap, a sliver thinner
+// than the rounding, whose constructed IP has two equal vertices and zero area in double. The
+// contact must still be finite: the force at most (kn/H) times the sliver's thickness (below
+// 2 ulp of the coordinates, 4e-15 m) times its perimeter (8 m), 3.2e-5 N/m for kn/H = 1e9; and
+// a contact point on the sliver, within its bounding box.
+BOOST_AUTO_TEST_CASE(sliver_overlap_thinner_than_rounding_stays_finite) {
+  const ConvexPolygon cp = ConvexPolygon::make(
+      "cp", {{12.997460632137537, 0.0}, {14.520600549966153, 0.0},
+             {15.313125286178266, 4.49463112807708}, {13.525494897286952, 2.9946311280770814}});
+  const ConvexPolygon tp = ConvexPolygon::make(
+      "tp", {{14.637753767459932, 0.6644089124821909}, {16.42538415635125, 2.1644089124821932},
+             {17.100755675069585, 5.994631128077082}, {15.313125286178266, 4.49463112807708}});
+  for (const PolicyKind policy : {PolicyKind::filtered, PolicyKind::exact}) {
+    BOOST_TEST_CONTEXT(policy_name(policy)) {
+      const rc::PairResult r = rc::evaluate_pair(policy, cp, tp, params(2e9, 2.0));
+      BOOST_TEST((r.status == Overlap::overlap));
+      BOOST_TEST(std::isfinite(r.force.x));
+      BOOST_TEST(std::isfinite(r.force.y));
+      BOOST_TEST(std::hypot(r.force.x, r.force.y) <= 1e9 * 4e-15 * 8.0);
+      if (r.point) {
+        BOOST_TEST(r.point->x >= 14.637753767459932 - 1e-9);
+        BOOST_TEST(r.point->x <= 15.313125286178266 + 1e-9);
+        BOOST_TEST(r.point->y >= 0.6644089124821909 - 1e-9);
+        BOOST_TEST(r.point->y <= 4.49463112807708 + 1e-9);
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(invalid_parameters_throw) {
   const ConvexPolygon cp = rectangle("cp", 0, 1, 0, 1), tp = rectangle("tp", 0.5, 2, 0, 1);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();

@@ -71,6 +71,18 @@ AreaCentroid<FT> area_centroid(std::span<const PointT<FT>> v) {
     cy += w * (ay + by);
   }
   const FT area = twice_area / FT(2);
+  if (twice_area == FT(0)) {
+    // A sliver whose constructed vertices are collinear (in double: an exact overlap thinner
+    // than the rounding of its vertices) has no centroid; the mean of its vertices is a point
+    // on it, which is all a moment reference needs.
+    FT sx(0), sy(0);
+    for (const PointT<FT>& p : v) {
+      sx += p.x - o.x;
+      sy += p.y - o.y;
+    }
+    const FT n(static_cast<int>(v.size()));
+    return {area, {o.x + sx / n, o.y + sy / n}};
+  }
   return {area, {o.x + cx / (FT(3) * twice_area), o.y + cy / (FT(3) * twice_area)}};
 }
 
