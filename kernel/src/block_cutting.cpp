@@ -19,7 +19,9 @@
 #include <iterator>
 #include <list>
 #include <numbers>
+#include <queue>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace rockcontact::kernel {
@@ -347,7 +349,234 @@ void remove_dead_ends(Arrangement& arrangement) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Blocks (step 5)
+// Merging small blocks (step 5)
+
+using Face = Arrangement::Face_handle;
+using Halfedge = Arrangement::Halfedge_handle;
+using FaceId = const Arrangement::Face*;
+
+// Exact area of a face: the shoelace sum over its outer boundary (counter-clockwise) and the
+// boundaries of its holes (clockwise seen from the face, so subtracted; an antenna adds 0),
+// taken relative to one vertex so that the interval filter stays tight far from the origin.
+FT face_area(Arrangement::Face_const_handle face) {
+  const ExactPoint& origin = face->outer_ccb()->source()->point();
+  FT twice = 0;
+  const auto add_cycle = [&](Arrangement::Ccb_halfedge_const_circulator first) {
+    auto edge = first;
+    do {
+      const K::Vector_2 a = edge->source()->point() - origin;
+      const K::Vector_2 b = edge->target()->point() - origin;
+      twice += a.x() * b.y() - a.y() * b.x();
+    } while (++edge != first);
+  };
+  add_cycle(face->outer_ccb());
+  for (auto hole = face->inner_ccbs_begin(); hole != face->inner_ccbs_end(); ++hole) add_cycle(*hole);
+  return twice / 2;
+}
+
+bool lower_left(const ExactPoint& a, const ExactPoint& b) { return CGAL::compare_yx(a, b) == CGAL::SMALLER; }
+
+// A face's outer boundary from its lowest, then leftmost vertex: the tie-breaking key of step 5
+// (two faces never have the same one: the edges leaving a shared first vertex differ).
+std::vector<ExactPoint> face_key(Arrangement::Face_const_handle face) {
+  std::vector<ExactPoint> points;
+  const auto first = face->outer_ccb();
+  auto edge = first;
+  do points.push_back(edge->source()->point());
+  while (++edge != first);
+  std::rotate(points.begin(), std::min_element(points.begin(), points.end(), lower_left), points.end());
+  return points;
+}
+
+bool key_less(const std::vector<ExactPoint>& a, const std::vector<ExactPoint>& b) {
+  return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), lower_left);
+}
+
+// In double, from the exact edge vector rounded once.
+double edge_length(Halfedge edge) {
+  const ExactPoint& a = edge->source()->point();
+  const ExactPoint& b = edge->target()->point();
+  return std::hypot(round_to_double(b.x() - a.x()), round_to_double(b.y() - a.y()));
+}
+
+std::vector<Halfedge> outer_boundary(Face face) {
+  std::vector<Halfedge> edges;
+  const auto first = face->outer_ccb();
+  auto edge = first;
+  do edges.push_back(edge);
+  while (++edge != first);
+  return edges;
+}
+
+// A maximal run of consecutive halfedges of a fragment's outer boundary with the same inside
+// face across them; `first` is the index of edges.front() in the boundary.
+struct SharedChain {
+  Face neighbour;
+  std::vector<Halfedge> edges;
+  std::size_t first = 0;
+  double length = 0.0;
+};
+
+// The chains of `boundary` (the outer boundary of `fragment`) shared with inside faces. The
+// scan starts where the face across changes, so no chain is split at the start; when the same
+// face lies across every edge, the whole boundary is one chain.
+std::vector<SharedChain> shared_chains(Face fragment, const std::vector<Halfedge>& boundary) {
+  const std::size_t n = boundary.size();
+  const auto across = [&](std::size_t i) { return boundary[i % n]->twin()->face(); };
+  std::size_t start = 0;
+  while (start < n && across(start) == across(start + n - 1)) ++start;
+  if (start == n) start = 0;
+  std::vector<SharedChain> chains;
+  for (std::size_t i = start; i < start + n; ++i) {
+    const Face face = across(i);
+    if (face == fragment || !face->data()) continue;
+    if (i == start || across(i - 1) != face) chains.push_back({face, {}, i % n, 0.0});
+    chains.back().edges.push_back(boundary[i % n]);
+    chains.back().length += edge_length(boundary[i % n]);
+  }
+  return chains;
+}
+
+// True when the chain's neighbour meets the fragment nowhere else: no other chain, and no
+// vertex of the fragment's outer boundary off the chain lies on the neighbour's boundary. The
+// chain's vertices are the sources of its edges and of the edge after it; the others follow.
+bool meets_only_along(const SharedChain& chain, const std::vector<SharedChain>& chains,
+                      const std::vector<Halfedge>& boundary) {
+  for (const SharedChain& other : chains) {
+    if (&other != &chain && other.neighbour == chain.neighbour) return false;
+  }
+  const std::size_t n = boundary.size();
+  for (std::size_t k = chain.edges.size() + 1; k < n; ++k) {
+    const auto first = boundary[(chain.first + k) % n]->source()->incident_halfedges();
+    auto incoming = first;
+    do {
+      if (incoming->face() == chain.neighbour) return false;
+    } while (++incoming != first);
+  }
+  return true;
+}
+
+// The chain along which a fragment merges (see the header), or null when there is none.
+const SharedChain* chosen_chain(const std::vector<SharedChain>& chains, const std::vector<Halfedge>& boundary) {
+  const SharedChain* best = nullptr;
+  for (const SharedChain& chain : chains) {
+    if (!meets_only_along(chain, chains, boundary)) continue;
+    if (best == nullptr || chain.length > best->length ||
+        (chain.length == best->length && key_less(face_key(chain.neighbour), face_key(best->neighbour)))) {
+      best = &chain;
+    }
+  }
+  return best;
+}
+
+// Removes the chain's edges (and the vertices inside it, left isolated); returns the merged face.
+Face merge_along(Arrangement& arrangement, const SharedChain& chain) {
+  Face merged;
+  for (const Halfedge edge : chain.edges) merged = arrangement.remove_edge(edge);
+  return merged;
+}
+
+// Step 5. Fragments wait in a priority queue (smallest area, then face_key); an entry is stale
+// once its face has been merged or re-queued (the generation no longer matches).
+class FragmentMerger {
+ public:
+  FragmentMerger(Arrangement& arrangement, double min_area) : arrangement_(arrangement), min_area_(min_area) {}
+
+  void run() {
+    for (auto face = arrangement_.faces_begin(); face != arrangement_.faces_end(); ++face) {
+      if (face->is_unbounded() || !face->data()) continue;
+      FT area = face_area(face);
+      if (area < min_area_) track(face, std::move(area));
+    }
+    while (!queue_.empty()) {
+      const Entry next = queue_.top();
+      queue_.pop();
+      const auto state = fragments_.find(next.id);
+      if (state != fragments_.end() && state->second.generation == next.generation) merge_or_wait(next.face);
+    }
+  }
+
+ private:
+  struct State {
+    FT area;
+    std::uint64_t generation;
+    bool waiting;  // no neighbour to merge with, until a neighbour changes
+  };
+  struct Entry {
+    FT area;
+    std::vector<ExactPoint> key;
+    Face face;
+    FaceId id;  // &*face, taken while the face existed: a stale entry's face may be gone
+    std::uint64_t generation;
+  };
+  // Orders the queue so that its top is the entry to process first.
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const {
+      if (a.area != b.area) return b.area < a.area;
+      if (key_less(b.key, a.key)) return true;
+      if (key_less(a.key, b.key)) return false;
+      return b.generation < a.generation;
+    }
+  };
+
+  void track(Face face, FT area) {
+    fragments_[&*face] = State{std::move(area), 0, false};
+    enqueue(face);
+  }
+
+  void enqueue(Face face) {
+    State& state = fragments_.at(&*face);
+    state.generation = ++generation_;
+    queue_.push(Entry{state.area, face_key(face), face, &*face, state.generation});
+  }
+
+  FT area_of(Face face) const {
+    const auto state = fragments_.find(&*face);
+    return state != fragments_.end() ? state->second.area : face_area(face);
+  }
+
+  void merge_or_wait(Face fragment) {
+    const std::vector<Halfedge> boundary = outer_boundary(fragment);
+    const std::vector<SharedChain> chains = shared_chains(fragment, boundary);
+    const SharedChain* chain = chosen_chain(chains, boundary);
+    if (chain == nullptr) {
+      fragments_.at(&*fragment).waiting = true;
+      return;
+    }
+    FT area = area_of(fragment) + area_of(chain->neighbour);
+    fragments_.erase(&*fragment);
+    fragments_.erase(&*chain->neighbour);
+    const Face merged = merge_along(arrangement_, *chain);
+    if (area < min_area_) track(merged, std::move(area));
+    wake_neighbours(merged);
+  }
+
+  // A waiting fragment next to the merged face may now find a neighbour to merge with.
+  void wake_neighbours(Face merged) {
+    const auto wake_across = [&](Arrangement::Ccb_halfedge_circulator first) {
+      auto edge = first;
+      do {
+        const Face face = edge->twin()->face();
+        const auto state = fragments_.find(&*face);
+        if (state != fragments_.end() && state->second.waiting) {
+          state->second.waiting = false;
+          enqueue(face);
+        }
+      } while (++edge != first);
+    };
+    wake_across(merged->outer_ccb());
+    for (auto hole = merged->inner_ccbs_begin(); hole != merged->inner_ccbs_end(); ++hole) wake_across(*hole);
+  }
+
+  Arrangement& arrangement_;
+  FT min_area_;
+  std::uint64_t generation_ = 0;
+  std::unordered_map<FaceId, State> fragments_;  // faces below min_area_; looked up, never iterated
+  std::priority_queue<Entry, std::vector<Entry>, Later> queue_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Blocks (step 6)
 
 // The exact outer boundary of an inside face, counter-clockwise, collinear vertices dropped.
 std::vector<ExactPoint> face_boundary(Arrangement::Face_const_handle face) {
@@ -422,13 +651,18 @@ bool strictly_convex(const std::vector<ExactPoint>& v) {
 
 }  // namespace
 
-std::vector<std::vector<Point2>> cut_region(std::span<const Point2> region, std::span<const JointSet> sets) {
+std::vector<std::vector<Point2>> cut_region(std::span<const Point2> region, std::span<const JointSet> sets,
+                                            const CutOptions& options) {
   const std::vector<ExactPoint> boundary = validate_polygon("region", region);
   for (std::size_t i = 0; i < sets.size(); ++i) validate_set(i, sets[i]);
+  if (!(std::isfinite(options.min_block_area) && options.min_block_area >= 0.0)) {
+    fail("min_block_area: expected a finite value >= 0, got " + num(options.min_block_area));
+  }
   const std::vector<Segment> traces = make_traces(region, sets);
   Arrangement arrangement;
   build_arrangement(arrangement, boundary, traces);
   remove_dead_ends(arrangement);
+  if (options.min_block_area > 0.0) FragmentMerger(arrangement, options.min_block_area).run();
   std::vector<Polygon> blocks = collect_blocks(arrangement);
   order_polygons(blocks);
   return blocks;

@@ -13,9 +13,14 @@
 //   5. the cases of 1 and 3 moved to 1e6 m: the same blocks, moved (exactly for case 1, within
 //      the rounding at 1e6 m for case 3);
 //   6. convex_partition on an L, a square (with and without a collinear vertex), a comb, a star;
-//   7. bad input: each error names its field.
+//   7. bad input: each error names its field;
+//   8. merging blocks below min_block_area: hand-built cases (a strip into its only neighbour;
+//      the longer shared edge winning; a neighbour meeting the fragment in two places passed
+//      over; a merged fragment merging again; a loop of traces filling a hole merged away; a
+//      lone small region kept), the paper's §6.1 configuration with its tiny boundary triangles
+//      counted and merged, determinism, and the bad option.
 // The test does not include CGAL: strict convexity is checked with ConvexPolygon::make (exact
-// predicates of this library), areas with polygon_area.
+// predicates of this library), collinearity with orientation<Exact>, areas with polygon_area.
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +32,7 @@
 
 #include "rockcontact/kernel/block_cutting.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/kernel/predicates.hpp"
 
 namespace rk = rockcontact::kernel;
 using rk::JointSet;
@@ -417,4 +423,207 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
                  {"polygon", "clockwise"});
   expect_invalid("partition: bow tie", [] { static_cast<void>(rk::convex_partition(Polygon{{0, 0}, {1, 1}, {1, 0}, {0, 1}})); },
                  {"polygon", "intersect"});
+}
+
+namespace {
+
+rk::CutOptions merge_below(double min_block_area) { return rk::CutOptions{min_block_area}; }
+
+std::vector<double> areas_of(const std::vector<Polygon>& blocks) {
+  std::vector<double> areas;
+  for (const Polygon& b : blocks) areas.push_back(rk::polygon_area(b));
+  return areas;
+}
+
+}  // namespace
+
+// 8a. [0,10]² by the verticals x = -(4.5 k) (dip 90: n = (-1, 0)): x = 0 lies on the boundary,
+// x = 4.5 and 9 cut, so the blocks are the strips of widths 4.5, 4.5 and 1 (areas 45, 45, 10,
+// exact in double). With min_block_area 20 the 1 m strip merges into its only neighbour: the
+// strip [4.5, 10] x [0, 10] (area 55) whose vertices (9, 0) and (9, 10), the old trace's ends,
+// are now collinear on the region boundary and dropped, so it has 4 vertices. [0, 4.5] x [0, 10]
+// is untouched and comes first (lowest-left vertex (0, 0) before (4.5, 0)).
+BOOST_AUTO_TEST_CASE(merge_strip_into_its_only_neighbour) {
+  const Polygon region = rectangle(0.0, 0.0, 10.0, 10.0);
+  const std::vector<JointSet> sets{persistent(90.0, 4.5, 0.0)};
+  const std::vector<Polygon> unmerged = rk::cut_region(region, sets);
+  BOOST_TEST((areas_of(unmerged) == std::vector<double>{45.0, 45.0, 10.0}));
+  BOOST_TEST((rk::cut_region(region, sets, merge_below(0.0)) == unmerged), "0: no merging");
+  const std::vector<Polygon> merged = rk::cut_region(region, sets, merge_below(20.0));
+  BOOST_TEST_REQUIRE(merged.size() == 2u);
+  BOOST_TEST((merged[0] == rectangle(0.0, 0.0, 4.5, 10.0)));
+  BOOST_TEST((merged[1] == rectangle(4.5, 0.0, 10.0, 10.0)));
+  BOOST_TEST((areas_of(merged) == std::vector<double>{45.0, 55.0}));
+}
+
+// 8b. A fragment with two neighbours: the vertical trace x = 0 (dip 90, offset 0) and a
+// horizontal trace starting on it (dip 0, a piece x in [0, 5] of period 105) that crosses the
+// region's right edge. Areas are integers, exact in double; min_block_area 5.
+//   - Region [-9,1]x[0,10], trace y = 2: L = [-9,0]x[0,10] (90), F = [0,1]x[0,2] (2),
+//     U = [0,1]x[2,10] (8). F shares 2 m with L (x = 0) and 1 m with U (y = 2): it joins L,
+//     giving the non-convex hexagon below (92; (0,0) dropped as collinear on y = 0); U stays.
+//   - Region [-8,2]x[0,10], trace y = 1: L = [-8,0]x[0,10] (80), F = [0,2]x[0,1] (2),
+//     U = [0,2]x[1,10] (18). Now F shares 1 m with L and 2 m with U: it joins U, giving the
+//     rectangle [0,2]x[0,10] (20), whose vertices (0,1) and (2,1) are collinear and dropped.
+BOOST_AUTO_TEST_CASE(merge_into_the_neighbour_with_the_longer_shared_edge) {
+  const JointSet vertical = persistent(90.0, 100.0, 0.0);
+  const std::vector<JointSet> at_2{vertical, traces(0.0, 100.0, 2.0, 5.0, 100.0)};
+  const Polygon region_1 = rectangle(-9.0, 0.0, 1.0, 10.0);
+  BOOST_TEST((areas_of(rk::cut_region(region_1, at_2)) == std::vector<double>{90.0, 2.0, 8.0}));
+  const std::vector<Polygon> left = rk::cut_region(region_1, at_2, merge_below(5.0));
+  BOOST_TEST_REQUIRE(left.size() == 2u);
+  const Polygon hexagon{{-9, 0}, {1, 0}, {1, 2}, {0, 2}, {0, 10}, {-9, 10}};
+  BOOST_TEST((left[0] == hexagon));
+  BOOST_TEST((left[1] == rectangle(0.0, 2.0, 1.0, 10.0)));
+  BOOST_TEST((areas_of(left) == std::vector<double>{92.0, 8.0}));
+
+  const std::vector<JointSet> at_1{vertical, traces(0.0, 100.0, 1.0, 5.0, 100.0)};
+  const Polygon region_2 = rectangle(-8.0, 0.0, 2.0, 10.0);
+  BOOST_TEST((areas_of(rk::cut_region(region_2, at_1)) == std::vector<double>{80.0, 2.0, 18.0}));
+  const std::vector<Polygon> up = rk::cut_region(region_2, at_1, merge_below(5.0));
+  BOOST_TEST_REQUIRE(up.size() == 2u);
+  BOOST_TEST((up[0] == rectangle(-8.0, 0.0, 0.0, 10.0)));
+  BOOST_TEST((up[1] == rectangle(0.0, 0.0, 2.0, 10.0)));
+}
+
+// 8c. A neighbour meeting the fragment in two places is passed over. Region [-3,7]x[-3,8]; the
+// persistent trace y = 7; a box of traces inside below it: y = 0 over x in [0, 4] and x = 0, 4
+// over y in [0, 7] (pieces of period 100 starting at 0). Blocks: the U around the box (110 -
+// 28 - 10 = 72), the box H = [0,4]x[0,7] (28) and the top strip A = [-3,7]x[7,8] (10). With
+// min_block_area 20, A shares 3 + 3 = 6 m with the U, in two separate chains, and 4 m with H.
+// Merging A into the U would enclose H (a hole, or with one chain removed a slit traversed
+// twice), so A joins H: the T below (38); the U is unchanged.
+BOOST_AUTO_TEST_CASE(merge_passes_over_a_neighbour_met_in_two_places) {
+  const Polygon region = rectangle(-3.0, -3.0, 7.0, 8.0);
+  const std::vector<JointSet> sets{persistent(0.0, 100.0, 7.0), traces(0.0, 100.0, 0.0, 4.0, 96.0),
+                                   traces(90.0, 4.0, 0.0, 7.0, 93.0)};
+  const Polygon u_shape{{-3, -3}, {7, -3}, {7, 7}, {4, 7}, {4, 0}, {0, 0}, {0, 7}, {-3, 7}};
+  const std::vector<Polygon> unmerged = rk::cut_region(region, sets);
+  BOOST_TEST_REQUIRE(unmerged.size() == 3u);
+  BOOST_TEST((unmerged[0] == u_shape));
+  BOOST_TEST((areas_of(unmerged) == std::vector<double>{72.0, 28.0, 10.0}));
+  const std::vector<Polygon> merged = rk::cut_region(region, sets, merge_below(20.0));
+  BOOST_TEST_REQUIRE(merged.size() == 2u);
+  BOOST_TEST((merged[0] == u_shape));
+  const Polygon t_shape{{0, 0}, {4, 0}, {4, 7}, {7, 7}, {7, 8}, {-3, 8}, {-3, 7}, {0, 7}};
+  BOOST_TEST((merged[1] == t_shape));
+  BOOST_TEST(rk::polygon_area(merged[1]) == 38.0);
+}
+
+// 8d. Repeated merging, holes and lone blocks.
+//   - [0,10]x[0,1] by x = 1 and x = 2 (two sets of one line each): strips of 1, 1 and 8 m². With
+//     min_block_area 2.5, [0,1] goes first (same area as [1,2], lower-left vertex first) into its
+//     only neighbour [1,2]; the union (2 m²) is still small and joins [2,10]: the region.
+//   - The closed loop of traces [0,4]² strictly inside [-5,5]² (case 7's hole): its 16 m² face
+//     shares its whole boundary with the face around it, so with min_block_area 20 it merges
+//     and the hole is gone (the region comes back); with 10 it stays and the hole is an error.
+//   - A region smaller than min_block_area with no sets has no neighbour: it stays.
+BOOST_AUTO_TEST_CASE(merge_repeats_fills_holes_and_keeps_lone_blocks) {
+  const Polygon strip = rectangle(0.0, 0.0, 10.0, 1.0);
+  const std::vector<JointSet> two_lines{persistent(90.0, 100.0, -1.0), persistent(90.0, 100.0, -2.0)};
+  BOOST_TEST((areas_of(rk::cut_region(strip, two_lines)) == std::vector<double>{1.0, 1.0, 8.0}));
+  BOOST_TEST((rk::cut_region(strip, two_lines, merge_below(2.5)) == std::vector<Polygon>{strip}));
+
+  const Polygon square = rectangle(-5.0, -5.0, 5.0, 5.0);
+  const std::vector<JointSet> loop{traces(0.0, 4.0, 0.0, 4.0, 16.0), traces(90.0, 4.0, 0.0, 4.0, 16.0)};
+  BOOST_TEST((rk::cut_region(square, loop, merge_below(20.0)) == std::vector<Polygon>{square}));
+  expect_invalid("loop above min_block_area",
+                 [&] { static_cast<void>(rk::cut_region(square, loop, merge_below(10.0))); },
+                 {"block near", "hole"});
+
+  const Polygon small = rectangle(0.0, 0.0, 1.0, 1.0);
+  BOOST_TEST((rk::cut_region(small, {}, merge_below(100.0)) == std::vector<Polygon>{small}));
+}
+
+namespace {
+
+// The paper's §6.1 sets with its offsets; the first trace passes 2.6e-4 m² from a corner.
+const std::vector<JointSet> paper_sets_with_offsets{persistent(80.0, 1.5, 0.7), persistent(40.0, 2.5, 1.1)};
+
+// True when a and b have an edge in common (opposite directions, identical rounded vertices:
+// shared vertices round identically).
+bool share_an_edge(const Polygon& a, const Polygon& b) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (a[i] == b[(j + 1) % b.size()] && a[(i + 1) % a.size()] == b[j]) return true;
+    }
+  }
+  return false;
+}
+
+// Simple, counter-clockwise, no collinear vertex (exact orientation of every vertex with its
+// neighbours), and convex_partition accepts it (it validates simplicity and orientation) with
+// parts adding up to it.
+void expect_valid_block(const Polygon& block) {
+  const std::size_t n = block.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const rk::Sign turn = rk::orientation<rk::Exact>(block[(i + n - 1) % n], block[i], block[(i + 1) % n]);
+    BOOST_TEST((turn != rk::Sign::zero));
+  }
+  BOOST_TEST(rk::polygon_area(block) > 0.0);
+  std::vector<Polygon> parts;
+  BOOST_CHECK_NO_THROW(parts = rk::convex_partition(block));
+  BOOST_TEST(std::abs(total_area(parts) - rk::polygon_area(block)) <= 1e-12 * rk::polygon_area(block));
+}
+
+}  // namespace
+
+// 8e. §6.1: dips 80 and 40 degrees, spacings 1.5 and 2.5 m, offsets 0.7 and 1.1 m, on 50 x 20 m.
+// Without merging, the traces leave small triangles where they cross near the region boundary
+// (the smallest 2.6e-4 m², as in the paper); the test counts those below 0.1 m² (9, asserted
+// >= 2 as "several") and checks that no two of them share an edge. Then each fragment can only
+// join a block of >= 0.1 m², so every merge removes exactly one fragment and the union is no
+// longer small: exactly one merge per fragment, and the block count drops by exactly the
+// number of fragments. (Had two fragments been adjacent, one merge could remove two; the count
+// would then only be bounded by fragments / 2 <= drop <= fragments.) After merging every block
+// is >= 0.1 m² (the exact areas are, and the smallest is far above the bound here), valid, and
+// the areas sum to 1000 m² within 1e-9 relative (the rounding of the crossing points, as in 3).
+BOOST_AUTO_TEST_CASE(merge_paper_example_fragments) {
+  constexpr double bound = 0.1;
+  const Polygon region = rectangle(0.0, 0.0, 50.0, 20.0);
+  const std::vector<Polygon> unmerged = rk::cut_region(region, paper_sets_with_offsets);
+  std::vector<Polygon> fragments;
+  for (const Polygon& b : unmerged) {
+    if (rk::polygon_area(b) < bound) fragments.push_back(b);
+  }
+  const std::vector<double> fragment_areas = areas_of(fragments);
+  const double smallest = *std::min_element(fragment_areas.begin(), fragment_areas.end());
+  BOOST_TEST_MESSAGE("§6.1 with offsets: " << unmerged.size() << " blocks, " << fragments.size()
+                                            << " below 0.1 m², the smallest " << smallest << " m²");
+  BOOST_TEST(fragments.size() >= 2u);
+  BOOST_TEST(smallest < 3e-4);
+  for (std::size_t i = 0; i < fragments.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) BOOST_TEST_REQUIRE(!share_an_edge(fragments[i], fragments[j]));
+  }
+  const std::vector<Polygon> merged = rk::cut_region(region, paper_sets_with_offsets, merge_below(bound));
+  BOOST_TEST(merged.size() == unmerged.size() - fragments.size());
+  std::size_t non_convex = 0;
+  for (std::size_t i = 0; i < merged.size(); ++i) {
+    BOOST_TEST_INFO("block " << i);
+    BOOST_TEST(rk::polygon_area(merged[i]) >= bound);
+    expect_valid_block(merged[i]);
+    if (!is_strictly_convex(merged[i])) ++non_convex;
+  }
+  BOOST_TEST_MESSAGE("after merging: " << merged.size() << " blocks, " << non_convex << " non-convex");
+  BOOST_TEST(std::abs(total_area(merged) - 1000.0) <= 1e-9 * 1000.0);
+}
+
+// 8f. Determinism: the same call twice gives the same blocks, bit for bit, in the same order.
+BOOST_AUTO_TEST_CASE(merge_is_deterministic) {
+  const Polygon region = rectangle(0.0, 0.0, 50.0, 20.0);
+  const std::vector<Polygon> first = rk::cut_region(region, paper_sets_with_offsets, merge_below(0.5));
+  const std::vector<Polygon> second = rk::cut_region(region, paper_sets_with_offsets, merge_below(0.5));
+  BOOST_TEST((first == second));
+}
+
+// 8g. The bad option names the field.
+BOOST_AUTO_TEST_CASE(merge_bad_option_names_the_field) {
+  const Polygon square = rectangle(0.0, 0.0, 10.0, 10.0);
+  const std::vector<JointSet> one{persistent(0.0, 1.0, 0.0)};
+  const auto cut = [&](double min_block_area) {
+    return [&, min_block_area] { static_cast<void>(rk::cut_region(square, one, merge_below(min_block_area))); };
+  };
+  expect_invalid("min_block_area -1", cut(-1.0), {"min_block_area", "got -1"});
+  expect_invalid("min_block_area NaN", cut(std::nan("")), {"min_block_area", "got nan"});
+  expect_invalid("min_block_area inf", cut(std::numeric_limits<double>::infinity()), {"min_block_area", "got inf"});
 }
