@@ -69,6 +69,8 @@ constexpr JsonField region_fields[] = {
     {"material", true, "the name of one of the scene's materials"},
     {"group", false, "the group name of the generated blocks (a string)"},
     {"id_prefix", false, "the prefix of the generated block ids (a string, default \"region\")"},
+    {"min_block_area", false,
+     "the area in m² below which a cut block is merged into a neighbour, a finite number >= 0"},
 };
 constexpr JsonField joint_set_fields[] = {
     {"dip_deg", true, "the trace angle from +x, counter-clockwise, in degrees, a number in [0, 180)"},
@@ -240,9 +242,15 @@ class SceneParser {
       prefix = reader_.string(value.at("id_prefix"), json_child(path, "id_prefix"),
                               expected(region_fields, "id_prefix"));
     }
+    kernel::CutOptions options;
+    if (value.contains("min_block_area")) {
+      options.min_block_area =
+          reader_.non_negative(value.at("min_block_area"), json_child(path, "min_block_area"),
+                               expected(region_fields, "min_block_area"));
+    }
     std::vector<std::vector<kernel::Point2>> pieces;
     try {
-      pieces = kernel::cut_region(outline, sets);
+      pieces = kernel::cut_region(outline, sets, options);
     } catch (const kernel::InvalidCut& e) {
       reader_.fail(path, e.what());
     }

@@ -537,7 +537,10 @@ BOOST_AUTO_TEST_CASE(region_joint_set_and_interface_errors) {
       },
       "region.id_prefix", R"(the generated id "region_1" is also a block's)");
   expect_error(with("region", R"([{"vertices": [[0,0],[1,0],[1,1]], "material": "rock", "colour": 1}])"),
-               "region[0].colour", "unknown field; expected only vertices, material, group, id_prefix");
+               "region[0].colour",
+               "unknown field; expected only vertices, material, group, id_prefix, min_block_area");
+  expect_error(with("region", R"({"vertices": [[0,0],[1,0],[1,1]], "material": "rock", "min_block_area": -1})"),
+               "region.min_block_area", "a finite number >= 0");
   const auto with_set = [](const char* text) {
     return [text](json& d) {
       d["region"] = json::parse(R"({"vertices": [[0,0],[4,0],[4,4],[0,4]], "material": "rock"})");

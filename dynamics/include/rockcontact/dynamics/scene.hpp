@@ -25,7 +25,9 @@
 //                            not allowed on a fixed block)}, ...],
 //                                                         (optional when "region" is given)
 //    "region": {"vertices": [[x, y], ...] m, CCW, simple, "material": a name,
-//               "group": a name (default ""), "id_prefix": text (default "region")}
+//               "group": a name (default ""), "id_prefix": text (default "region"),
+//               "min_block_area": m² >= 0 (default 0: cut fragments below it are merged
+//                                 into a neighbour, kernel::CutOptions)}
 //              or an array of such regions                (optional; blocks "<id_prefix>_<k>")
 //    "joint_sets": [{"dip_deg": [0, 180) degrees from +x, CCW, "spacing": m > 0,
 //                    "offset": m (default 0), "length": m > 0 (default persistent),
