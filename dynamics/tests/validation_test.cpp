@@ -106,13 +106,16 @@ BOOST_AUTO_TEST_CASE(quick_run_covers_every_scene_with_consistent_rows) {
       BOOST_TEST(r.pass == within);
     }
   }
-  BOOST_TEST(sections == (std::set<std::string>{"4.1", "4.2", "4.3", "5.1", "5.2", "5.3"}));
-  BOOST_TEST(rows.size() == 18u);  // 3 (4.1) + 1 (4.2) + 3 x 2 (4.3) + 2 (5.1) + 2 (5.2) + 2 x 2 (5.3)
-  BOOST_TEST(announced.size() == 9u);  // 4.1, 4.2, three inclines, 5.1, 5.2, two 5.3 cases
-  // One output directory per run: 4.1, 4.2, 3 inclines, 4 bounces, 5.2, 2 small-edge cases.
+  BOOST_TEST(sections ==
+             (std::set<std::string>{"4.1", "4.2", "4.3", "5.1", "5.2", "5.3", "6.1", "6.2"}));
+  // 3 (4.1) + 1 (4.2) + 3 x 2 (4.3) + 2 (5.1) + 2 (5.2) + 2 x 2 (5.3) + 2 (6.1 quick) + 1 (6.2 quick)
+  BOOST_TEST(rows.size() == 21u);
+  BOOST_TEST(announced.size() == 11u);  // 4.1, 4.2, three inclines, 5.1, 5.2, two 5.3, 6.1, 6.2
+  // One output directory per run: 4.1, 4.2, 3 inclines, 4 bounces, 5.2, 2 small-edge cases, two
+  // collapses, the valley.
   std::size_t runs = 0;
   for (const auto& entry : fs::directory_iterator(options.out_dir)) {
     runs += fs::exists(entry.path() / "summary.json") ? 1 : 0;
   }
-  BOOST_TEST(runs == 12u);
+  BOOST_TEST(runs == 15u);
 }
