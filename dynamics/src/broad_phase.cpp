@@ -79,7 +79,6 @@ void UniformGrid::find_pairs(std::span<const BroadPhaseBox> boxes, std::vector<B
       }
     }
   }
-  std::sort(pairs.begin(), pairs.end());
 }
 
 void all_pairs(std::span<const BroadPhaseBox> boxes, std::vector<BlockPair>& pairs) {

@@ -30,7 +30,9 @@ using BlockPair = std::pair<std::size_t, std::size_t>;  // (i, j), i < j
 
 class UniformGrid {
  public:
-  // Replaces `pairs` with the candidate pairs, sorted, each as (lower index, higher index).
+  // Replaces `pairs` with the candidate pairs, each as (lower index, higher index), in cell
+  // order: a function of the boxes alone, so the same boxes give the same order (no sort: it
+  // was a tenth of a step's cost at 1e4 blocks).
   void find_pairs(std::span<const BroadPhaseBox> boxes, std::vector<BlockPair>& pairs);
 
  private:
