@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../src/broad_phase.hpp"
+#include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 
 namespace {
@@ -100,13 +101,7 @@ BOOST_AUTO_TEST_CASE(newtons_cradle_passes_the_velocity_down_the_row) {
     blocks.push_back(b);
   }
   blocks[0].velocity = {1.0, 0.0};
-  ContactLaw law;
-  law.normal.kn = 1.0e7;
-  law.normal.H = 1.0;
-  DdaParams p;
-  p.dt = 1.0e-4;
-  p.gravity = {0.0, 0.0};
-  Dda2d sim(blocks, law, p);
+  Dda2d sim(blocks, testing::frictionless(), testing::params(1.0e-4));
   const double m = sim.blocks()[0].mass;
   double worst_momentum = 0.0;
   while (sim.steps() < 12000) {  // the last collision ends near 0.9 + 0.2 = 1.1 s

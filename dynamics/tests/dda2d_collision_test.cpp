@@ -32,15 +32,13 @@
 #include <numbers>
 #include <vector>
 
+#include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 
 namespace {
 
 using namespace rockcontact::dynamics;
-
-std::vector<Point2> square(double x0, double y0, double side) {
-  return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
-}
+using namespace rockcontact::dynamics::testing;
 
 void collide(bool rigid) {
   BlockSpec a, b;
@@ -50,13 +48,8 @@ void collide(bool rigid) {
   b.id = "B";
   b.vertices = square(1.0, 0.0, 1.0);
   a.rigid = b.rigid = rigid;
-  ContactLaw law;
-  law.normal.kn = 1.0e7;
-  law.normal.H = 1.0;
-  DdaParams p;
-  p.dt = 1.0e-4;
-  p.gravity = {0.0, 0.0};
-  Dda2d sim({a, b}, law, p);
+  const DdaParams p = params(1.0e-4);
+  Dda2d sim({a, b}, frictionless(), p);
   const double m = sim.blocks()[0].mass;
   const Energies e0 = sim.energies();
 

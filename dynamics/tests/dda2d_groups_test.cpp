@@ -10,39 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 
 namespace {
 
 using namespace rockcontact::dynamics;
+using namespace rockcontact::dynamics::testing;
 
 constexpr double g = 9.81;
 
 // The L [0, 2] x [0, 1] ∪ [0, 1] x [1, 2], shifted by (x0, y0), CCW.
 std::vector<Point2> l_shape(double x0, double y0) {
   return {{x0, y0}, {x0 + 2, y0}, {x0 + 2, y0 + 1}, {x0 + 1, y0 + 1}, {x0 + 1, y0 + 2}, {x0, y0 + 2}};
-}
-
-BlockSpec block(std::string id, std::vector<Point2> vertices, bool fixed = false) {
-  BlockSpec b;
-  b.id = std::move(id);
-  b.vertices = std::move(vertices);
-  b.fixed = fixed;
-  return b;
-}
-
-ContactLaw law(double kn = 1.0e7) {
-  ContactLaw l;
-  l.normal.kn = kn;
-  l.normal.H = 1.0;
-  return l;
-}
-
-DdaParams params(double dt, Vector2 gravity) {
-  DdaParams p;
-  p.dt = dt;
-  p.gravity = gravity;
-  return p;
 }
 
 }  // namespace
@@ -56,7 +36,7 @@ BOOST_AUTO_TEST_CASE(non_convex_block_moves_as_one_body) {
   BlockSpec spec = block("L", l_shape(0.0, 0.0));
   spec.rigid = true;
   spec.omega = 2.0;
-  Dda2d sim({spec}, law(), params(1.0e-3, {0.0, 0.0}));
+  Dda2d sim({spec}, frictionless(), params(1.0e-3, {0.0, 0.0}));
   const BlockState& s0 = sim.blocks()[0];
   BOOST_TEST(std::fabs(s0.area - 3.0) <= 1e-15);
   BOOST_TEST(std::fabs(s0.centroid.x - 5.0 / 6.0) <= 1e-15);
@@ -85,7 +65,7 @@ BOOST_AUTO_TEST_CASE(non_convex_block_rests_at_its_static_penetration) {
                             {1.5, 2 - delta}, {0.5, 2 - delta}, {0.5, 1 - delta}, {0, 1 - delta}});
   t.rigid = true;
   const BlockSpec floor = block("floor", {{-3, -1}, {5, -1}, {5, 0}, {-3, 0}}, true);
-  Dda2d sim({floor, t}, law(), params(1.0e-4, {0.0, -g}));
+  Dda2d sim({floor, t}, frictionless(), params(1.0e-4, {0.0, -g}));
   const Point2 start = sim.blocks()[1].centroid;
   for (int n = 0; n < 500; ++n) sim.step();
   const Point2 end = sim.blocks()[1].centroid;
@@ -105,7 +85,7 @@ BOOST_AUTO_TEST_CASE(bad_non_convex_outline_is_named) {
   const std::vector<Point2> bow_tie{{0, 0}, {2, 2}, {2, 0}, {0, 2}};
   for (const auto& outline : {clockwise, bow_tie}) {
     try {
-      Dda2d sim({block("bad", outline)}, law(), params(1.0e-3, {0.0, 0.0}));
+      Dda2d sim({block("bad", outline)}, frictionless(), params(1.0e-3, {0.0, 0.0}));
       BOOST_ERROR("accepted a bad outline");
     } catch (const std::invalid_argument& e) {
       BOOST_TEST_MESSAGE(e.what());
@@ -134,7 +114,7 @@ BOOST_AUTO_TEST_CASE(interfaces_set_friction_per_pair_of_groups) {
   floor.group = "floor";
   BlockSpec rough = square("rough", 0.0), smooth = square("smooth", 3.0);
   rough.group = "rough";
-  ContactLaw l = law();
+  ContactLaw l = frictionless();
   l.friction = FrictionLaw{1.0e7, 10.0};
   l.interfaces.push_back({{"rough", "floor"}, 1.0e7, FrictionLaw{1.0e7, 40.0}});
   Dda2d sim({floor, rough, smooth}, l, params(1.0e-4, {0.0, -g}));
@@ -158,7 +138,7 @@ BOOST_AUTO_TEST_CASE(interfaces_set_friction_per_pair_of_groups) {
 
 // Interfaces are checked like the defaults and at most one per pair of groups.
 BOOST_AUTO_TEST_CASE(bad_interfaces_are_named) {
-  ContactLaw l = law();
+  ContactLaw l = frictionless();
   l.interfaces.push_back({{"a", "b"}, -1.0, std::nullopt});
   try {
     Dda2d sim({block("x", {{0, 0}, {1, 0}, {0, 1}})}, l, params(1.0e-3, {0.0, 0.0}));

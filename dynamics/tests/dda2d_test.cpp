@@ -10,38 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 
 namespace {
 
 using namespace rockcontact::dynamics;
+using namespace rockcontact::dynamics::testing;
 using rockcontact::kernel::InvalidPolygon;
-
-std::vector<Point2> square(double x0, double y0, double side) {
-  return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
-}
-
-BlockSpec block(std::string id, std::vector<Point2> vertices) {
-  BlockSpec b;
-  b.id = std::move(id);
-  b.vertices = std::move(vertices);
-  return b;
-}
-
-ContactLaw frictionless(double kn = 1.0e7, double H = 1.0) {
-  ContactLaw law;
-  law.normal.kn = kn;
-  law.normal.H = H;
-  return law;
-}
-
-DdaParams params(double dt, Vector2 gravity = {0.0, 0.0}) {
-  DdaParams p;
-  p.dt = dt;
-  p.gravity = gravity;
-  return p;
-}
 
 double polygon_area(const std::vector<Point2>& v) {
   double twice = 0.0;
