@@ -16,6 +16,16 @@
 // displacement increment Δd = Δu_CP(pg) - Δu_TP(pg) updates d (§3.2.6): d += Δd after a
 // stick step, d = Δd after a sliding step (the spring restarts from the current position).
 //
+// Known behaviour of this law (the paper's, kept as it is): the update after a sliding step,
+// d = Δd, forgets the spring's stretch, and nothing in the contact damps. A pair whose load stays
+// below the Coulomb limit but whose undamped overshoot on the spring (or on the normal springs,
+// when the friction torque rocks the block) exceeds it slides at the overshoot, restarts from an
+// unloaded spring when the slip reverses, and slides again: it ratchets. A rigid 1 m square on a
+// 30° incline with phi = 40°, which should hold, creeps 12 mm in 0.2 s and 52 mm in 1 s (kn = kt =
+// 1e7, H = 1 m, dt = 1e-5 s, started at its static normal penetration). Keeping the stretch after
+// sliding (the elastic-plastic update of DEM codes) removes the spring reset but not the
+// undamped rocking; a contact damping is the remedy, and neither is part of seed 000.
+//
 // Departures from the paper:
 //   * eq. 26, second case, is -kt d_tan without a cap; here a reversal goes back through
 //     eq. 25, so |f_t| never exceeds the Coulomb limit even when one step's reversal is
