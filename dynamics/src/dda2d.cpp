@@ -215,6 +215,7 @@ struct Dda2d::Impl {
   template <kernel::NumberPolicy Policy>
   void measure(PartContact& c, PairScratch& mine) const;
   void record_contact(const PartContact& m);
+  void count_worker(const kernel::PredicateCounters& before);
   void check_penetration(const PartContact& m);
   std::size_t law_index(std::size_t i, std::size_t j) const {
     return law_of_groups[bodies[i].group * group_count + bodies[j].group];
@@ -571,12 +572,18 @@ void Dda2d::Impl::measure_candidates() {
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       measure<Policy>(candidates[static_cast<std::size_t>(k)], mine);
     }
-    if (me != 0) {
-      const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
-#pragma omp critical(rockcontact_dda2d_counters)
-      add_counters(counters, spent);
-    }
+    count_worker(before);
   }
+}
+
+// Inside a parallel region: adds what a worker thread spent on predicates since `before` to the
+// simulation's counters (the calling thread's share is counted by the CountInto around it), so
+// the counts do not depend on the thread count either.
+void Dda2d::Impl::count_worker(const kernel::PredicateCounters& before) {
+  if (omp_get_thread_num() == 0) return;
+  const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
+#pragma omp critical(rockcontact_dda2d_counters)
+  add_counters(counters, spent);
 }
 
 template <kernel::NumberPolicy Policy>
@@ -680,19 +687,24 @@ void Dda2d::Impl::for_each_movable(F&& body) {
   const int threads = n >= parallel_threshold ? thread_count : 1;
   std::exception_ptr error;
   std::ptrdiff_t error_at = n;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    if (states[i].fixed) continue;
-    try {
-      body(i);
-    } catch (...) {
+#pragma omp parallel num_threads(threads)
+  {
+    const kernel::PredicateCounters before = kernel::predicate_counters();
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (states[i].fixed) continue;
+      try {
+        body(i);
+      } catch (...) {
 #pragma omp critical(rockcontact_dda2d_block_error)
-      if (k < error_at) {
-        error_at = k;
-        error = std::current_exception();
+        if (k < error_at) {
+          error_at = k;
+          error = std::current_exception();
+        }
       }
     }
+    count_worker(before);
   }
   if (error) std::rethrow_exception(error);
 }
@@ -884,7 +896,7 @@ Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params) {
     const CountInto count(spent);
     impl_ = std::make_shared<Impl>(std::move(blocks), std::move(law), params);
   }
-  impl_->counters = spent;
+  add_counters(impl_->counters, spent);
 }
 
 void Dda2d::step() {

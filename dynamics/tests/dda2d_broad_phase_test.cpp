@@ -124,7 +124,8 @@ BOOST_AUTO_TEST_CASE(newtons_cradle_passes_the_velocity_down_the_row) {
 // stack with 5 mm gaps, fall onto a fixed floor and into each other with friction (enough blocks and
 // candidate pairs for every parallel pass to use its threads). Every candidate pair is measured
 // independently and the contacts are assembled in pair order, and every per-block update touches
-// its own block, so 1, 2 and 3 threads must give the same state to the last bit.
+// its own block, so 1, 2 and 3 threads must give the same state to the last bit, and the same
+// count of predicate calls.
 BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_thread_count) {
   std::vector<BlockSpec> blocks;
   BlockSpec floor;
@@ -145,6 +146,7 @@ BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_thread_count) {
   law.normal.H = 0.5;
   law.friction = FrictionLaw{1.0e8, 30.0};
   std::vector<std::vector<BlockState>> finals;
+  std::vector<std::uint64_t> predicates;
   for (const std::size_t threads : {1u, 2u, 3u}) {
     DdaParams p;
     p.dt = 1.0e-4;
@@ -154,7 +156,10 @@ BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_thread_count) {
     BOOST_TEST_MESSAGE(threads << " threads: " << sim.contacts().size() << " contacts at t = " << sim.time());
     BOOST_TEST(sim.contacts().size() > 64u);  // more than the parallel threshold of the passes
     finals.push_back(sim.blocks());
+    predicates.push_back(sim.predicate_counters().total_calls());
   }
+  BOOST_TEST(predicates[1] == predicates[0]);  // the workers' predicate calls are counted too
+  BOOST_TEST(predicates[2] == predicates[0]);
   for (std::size_t run = 1; run < finals.size(); ++run) {
     for (std::size_t i = 0; i < finals[0].size(); ++i) {
       BOOST_TEST_CONTEXT("run " << run << ", block " << finals[0][i].id) {
