@@ -208,7 +208,7 @@ bool valid(const Polygon& poly) { return poly.size() >= 3; }
 
 std::optional<PolygonPair> pair_if_valid(Polygon cp, Polygon tp) {
   if (!valid(cp) || !valid(tp)) return std::nullopt;
-  return PolygonPair{std::move(cp), std::move(tp)};
+  return PolygonPair{std::move(cp), std::move(tp), {}};
 }
 
 // ---- families -----------------------------------------------------------------------------
@@ -586,6 +586,8 @@ PolygonPair generate_pair(Family family, std::uint64_t seed, std::uint64_t index
     if (std::optional<PolygonPair> pair = generate_once(family, rng)) {
       rotate_start(rng, pair->cp);
       rotate_start(rng, pair->tp);
+      pair->recipe = std::string(to_string(family)) + " seed " + std::to_string(seed) + " index " +
+                     std::to_string(index) + (pair->recipe.empty() ? "" : ": " + pair->recipe);
       return std::move(*pair);
     }
   }

@@ -55,6 +55,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -89,6 +90,9 @@ std::optional<Family> parse_family(std::string_view name);
 struct PolygonPair {
   std::vector<Point2> cp;  // contact polygon, CCW, strictly convex (m)
   std::vector<Point2> tp;  // target polygon, CCW, strictly convex (m)
+  // How the pair was made: "FAMILY seed S index I" and the family's parameters, enough to
+  // tell a reader what the case is and to regenerate it.
+  std::string recipe;
 };
 
 // The pair number `index` of `family` in the stream of `seed`. Pairs are independent of each

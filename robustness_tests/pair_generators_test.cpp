@@ -249,7 +249,7 @@ BOOST_AUTO_TEST_CASE(hull_snap_and_exact_translation) {
   BOOST_TEST((hull == Polygon{{0, 0}, {2, 0}, {2, 2}, {0, 2}}));
   BOOST_TEST(rb::convex_hull({{0, 0}, {1, 1}, {3, 3}}).size() == 2u);
 
-  const rb::PolygonPair pair{{{0.1, 0.1}, {1.1, 0.1}, {0.6, 0.9}}, {{0.3, 0.3}, {1.3, 0.3}, {0.8, 1.3}}};
+  const rb::PolygonPair pair{{{0.1, 0.1}, {1.1, 0.1}, {0.6, 0.9}}, {{0.3, 0.3}, {1.3, 0.3}, {0.8, 1.3}}, {}};
   // 0.1 is not a multiple of 2^-33: translating it by 1e6 rounds.
   BOOST_TEST(!rb::translate_exactly(pair, {1e6, -1e6}).has_value());
   const auto snapped = rb::snap_to_grid(pair, -33);
@@ -258,5 +258,5 @@ BOOST_AUTO_TEST_CASE(hull_snap_and_exact_translation) {
   BOOST_TEST_REQUIRE(far.has_value());
   BOOST_TEST(far->cp[0].x - 1e6 == snapped->cp[0].x);
   // A grid so coarse that the triangle collapses to a segment.
-  BOOST_TEST(!rb::snap_to_grid({{{0, 0}, {4, 0}, {2, 0.25}}, pair.tp}, 1).has_value());
+  BOOST_TEST(!rb::snap_to_grid({{{0, 0}, {4, 0}, {2, 0.25}}, pair.tp, {}}, 1).has_value());
 }
