@@ -9,12 +9,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "rockcontact/dynamics/atomic_file.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/dynamics/pairs_io.hpp"
 #include "rockcontact/dynamics/pairs_summary.hpp"
@@ -48,20 +46,14 @@ struct PairsOptions {
   std::string demarcation;
 };
 
-// A command line that cannot be carried out as given (an output path that cannot be written).
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 void write_json(const std::string& target, const nlohmann::ordered_json& document) {
   if (target == "-") {
     std::cout << document.dump(2) << '\n';
     return;
   }
-  std::ofstream file(target);
-  file << document.dump(2) << '\n';
-  if (!file.flush()) throw UsageError("cannot write " + target + ": " + std::strerror(errno));
+  dyn::AtomicFile file(target);
+  file.stream() << document.dump(2) << '\n';
+  file.commit();
 }
 
 int run_pairs(const PairsOptions& options) {
@@ -272,9 +264,6 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? exit_ok : exit_bad_input;
   } catch (const dyn::InputError& e) {
-    std::cerr << "rockcontact: " << e.what() << '\n';
-    return exit_bad_input;
-  } catch (const UsageError& e) {
     std::cerr << "rockcontact: " << e.what() << '\n';
     return exit_bad_input;
   } catch (const dyn::OutputError& e) {

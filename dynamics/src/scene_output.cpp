@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <system_error>
@@ -68,23 +66,11 @@ std::string xml_escape(const std::string& text) {
   return escaped;
 }
 
-std::ofstream open_for_writing(const fs::path& file) {
-  std::ofstream stream(file, std::ios::binary);
-  if (!stream) {
-    throw OutputError("cannot write " + file.string() + ": " + std::strerror(errno));
-  }
-  return stream;
-}
-
-void close_checked(std::ofstream& stream, const fs::path& file) {
-  stream.close();
-  if (!stream) throw OutputError("cannot write " + file.string() + ": write failed");
-}
-
 void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
   std::size_t points = 0;
   for (const BlockState& b : blocks) points += b.vertices.size();
-  std::ofstream out = open_for_writing(file);
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
          "header_type=\"UInt64\">\n"
@@ -135,7 +121,7 @@ void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
         << number(b.stress[2]) << '\n';
   }
   out << "        </DataArray>\n      </CellData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  close_checked(out, file);
+  output.commit();
 }
 
 void write_svg(const fs::path& file, std::span<const BlockState> blocks,
@@ -154,7 +140,8 @@ void write_svg(const fs::path& file, std::span<const BlockState> blocks,
   const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
   const double scale = width_px / (xmax - xmin + 2.0 * margin);
   const double height_px = (ymax - ymin + 2.0 * margin) * scale;
-  std::ofstream out = open_for_writing(file);
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
       << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
       << "\">\n"
@@ -178,7 +165,7 @@ void write_svg(const fs::path& file, std::span<const BlockState> blocks,
     out << "\"><title>" << xml_escape(b.id) << "</title></polygon>\n";
   }
   out << "</svg>\n";
-  close_checked(out, file);
+  output.commit();
 }
 
 ordered_json energies_json(const Energies& e) {
@@ -209,8 +196,8 @@ SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
-  tracks_ = open_for_writing(dir_ / "tracks.csv");
-  tracks_ << "t,block,x,y,rotation,vx,vy,omega\n";
+  tracks_.emplace(dir_ / "tracks.csv");
+  tracks_->stream() << "t,block,x,y,rotation,vx,vy,omega\n";
 }
 
 void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
@@ -218,12 +205,12 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
     const auto it =
         std::find_if(blocks.begin(), blocks.end(), [&](const BlockState& b) { return b.id == id; });
     if (it == blocks.end()) continue;
-    tracks_ << number(time) << ',' << csv_field(id) << ',' << number(it->centroid.x) << ','
+    tracks_->stream() << number(time) << ',' << csv_field(id) << ',' << number(it->centroid.x) << ','
             << number(it->centroid.y) << ',' << number(it->rotation) << ','
             << number(it->velocity[0]) << ',' << number(it->velocity[1]) << ','
             << number(it->velocity[2]) << '\n';
   }
-  if (!tracks_) throw OutputError("cannot write " + (dir_ / "tracks.csv").string());
+  if (!tracks_->stream()) throw OutputError("cannot write " + tracks_->target().string());
   std::string index = std::to_string(frames_.size());
   index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
   const std::string name = "frame_" + index + ".vtp";
@@ -232,9 +219,9 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
 }
 
 void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_json& summary) {
-  close_checked(tracks_, dir_ / "tracks.csv");
-  const fs::path pvd = dir_ / "frames.pvd";
-  std::ofstream out = open_for_writing(pvd);
+  tracks_->commit();
+  AtomicFile pvd(dir_ / "frames.pvd");
+  std::ostream& out = pvd.stream();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
@@ -243,12 +230,11 @@ void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_jso
         << f.file << "\"/>\n";
   }
   out << "  </Collection>\n</VTKFile>\n";
-  close_checked(out, pvd);
+  pvd.commit();
   write_svg(dir_ / "final.svg", blocks, track_, frames_.empty() ? 0.0 : frames_.back().time);
-  const fs::path summary_file = dir_ / "summary.json";
-  std::ofstream summary_out = open_for_writing(summary_file);
-  summary_out << summary.dump(2) << '\n';
-  close_checked(summary_out, summary_file);
+  AtomicFile summary_file(dir_ / "summary.json");
+  summary_file.stream() << summary.dump(2) << '\n';
+  summary_file.commit();
 }
 
 ordered_json run_summary(const Scene& scene, const RunReport& report) {

@@ -219,6 +219,67 @@ BOOST_AUTO_TEST_CASE(unwritable_directory_is_an_output_error) {
   BOOST_CHECK_THROW(dyn::SceneRecorder(scene, file / "out"), dyn::OutputError);
 }
 
+// An AtomicFile's target appears only at commit(); until then a previous version stays whole,
+// and an abandoned write leaves neither the target changed nor the ".partial" file behind.
+BOOST_AUTO_TEST_CASE(atomic_file_appears_only_when_committed) {
+  const fs::path dir = fresh_dir("atomic");
+  fs::create_directories(dir);
+  const fs::path target = dir / "result.json";
+  const fs::path partial = dir / "result.json.partial";
+  {
+    dyn::AtomicFile file(target);
+    file.stream() << "first";
+    BOOST_TEST(!fs::exists(target));
+    BOOST_TEST(fs::exists(partial));
+    file.commit();
+  }
+  BOOST_TEST(read_text(target) == "first");
+  BOOST_TEST(!fs::exists(partial));
+  {
+    dyn::AtomicFile file(target);
+    file.stream() << "second, abandoned half-way";
+  }
+  BOOST_TEST(read_text(target) == "first");
+  BOOST_TEST(!fs::exists(partial));
+}
+
+// A rename that fails (the target is a non-empty directory) is an OutputError naming the
+// target; the directory is untouched and the partial file removed.
+BOOST_AUTO_TEST_CASE(atomic_file_commit_failure_names_the_target) {
+  const fs::path dir = fresh_dir("atomic_blocked");
+  const fs::path target = dir / "summary.json";
+  fs::create_directories(target / "occupied");
+  dyn::AtomicFile file(target);
+  file.stream() << "{}";
+  try {
+    file.commit();
+    BOOST_ERROR("commit over a non-empty directory must throw");
+  } catch (const dyn::OutputError& e) {
+    BOOST_TEST(std::string(e.what()).find("cannot write " + target.string()) == 0u, e.what());
+  }
+  BOOST_TEST(fs::is_directory(target / "occupied"));
+  BOOST_TEST(!fs::exists(dir / "summary.json.partial"));
+}
+
+// A run whose third frame cannot be written stops with an OutputError, and leaves no
+// truncated file: the frames written before it are whole, tracks.csv and summary.json (written
+// in full only at the end) do not exist, and no ".partial" file is left over.
+BOOST_AUTO_TEST_CASE(failed_run_leaves_no_half_written_file) {
+  const fs::path dir = fresh_dir("failed_run");
+  fs::create_directories(dir / "frame_0002.vtp" / "occupied");
+  const dyn::Scene scene = dyn::parse_scene(free_fall_scene(10), "free_fall.json");
+  dyn::RunOptions options;
+  options.out_dir = dir;
+  BOOST_CHECK_THROW(dyn::run_scene(scene, options), dyn::OutputError);
+  BOOST_TEST(!fs::exists(dir / "tracks.csv"));
+  BOOST_TEST(!fs::exists(dir / "summary.json"));
+  BOOST_TEST(!fs::exists(dir / "frames.pvd"));
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    BOOST_TEST(entry.path().extension() != ".partial", entry.path());
+  }
+  for (const char* frame : {"frame_0000.vtp", "frame_0001.vtp"}) check_frame(dir / frame, {4});
+}
+
 // Velocity Verlet integrates a constant force exactly: y(t) = y0 - g t² / 2, x(t) = x0 + vx t,
 // vy = -g t, for every recorded row (every 10 steps of 1 ms, plus the final time 0.051 s:
 // 0.0505 s rounds up to 51 steps). What is left is rounding: the centroid is recomputed from

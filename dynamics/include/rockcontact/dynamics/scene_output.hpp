@@ -18,10 +18,11 @@
 //
 // If the engine stops the run (StabilityError after some steps), the outputs are still
 // completed with the last state and summary.json says "status": "stopped" and why.
+// Every file is written through an AtomicFile: a run that fails part-way (an exception, a full
+// disk) leaves no truncated file under any of these names.
 
 #include <cstddef>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,17 +31,12 @@
 #include <string>
 #include <vector>
 
+#include "rockcontact/dynamics/atomic_file.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/dynamics/scene.hpp"
 #include "rockcontact/kernel/predicate_stats.hpp"
 
 namespace rockcontact::dynamics {
-
-// An output file or directory that cannot be written; what() names it and says why.
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // Writes the files listed above into one directory (created if missing).
 class SceneRecorder {
@@ -65,7 +61,7 @@ class SceneRecorder {
   std::filesystem::path dir_;
   std::vector<std::string> track_;
   std::size_t frame_digits_;
-  std::ofstream tracks_;
+  std::optional<AtomicFile> tracks_;  // set in the constructor, once the directory exists
   std::vector<Frame> frames_;
 };
 
