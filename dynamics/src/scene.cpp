@@ -116,6 +116,36 @@ std::optional<HRule> parse_h_rule(std::string_view text) {
 
 using Materials = std::map<std::string, Material, std::less<>>;
 
+// Where in the scene a kernel::cut_region refusal belongs. The kernel's messages start with
+// what they refuse, in its own words: "region: ..." (the outline), "joint_sets[i].FIELD: ..."
+// (with FIELD "trace_length" for the scene's "length"), "min_block_area: ..."; anything else
+// (a generated block "block near (x, y): ...") is the region's as a whole. Returns the JSON
+// path and the message without its prefix, so the error reads "<file>: region.vertices:
+// vertices are clockwise ..." rather than naming the region twice.
+std::pair<std::string, std::string> cut_error_at(const std::string& region_path,
+                                                 const std::string& message) {
+  const auto strip = [&](std::string_view prefix) {
+    return message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size())
+                                                          : std::string();
+  };
+  if (std::string rest = strip("region: "); !rest.empty()) {
+    return {json_child(region_path, "vertices"), rest};
+  }
+  if (std::string rest = strip("min_block_area: "); !rest.empty()) {
+    return {json_child(region_path, "min_block_area"), rest};
+  }
+  if (message.compare(0, 11, "joint_sets[") == 0) {
+    const std::size_t colon = message.find(": ");
+    std::string field = message.substr(0, colon);
+    if (const std::size_t at = field.find(".trace_length"); at != std::string::npos) {
+      field.replace(at, 13, ".length");
+    }
+    if (colon != std::string::npos) return {field, message.substr(colon + 2)};
+  }
+  return {region_path, message};
+}
+
+
 // A document being parsed: the reader (source name) plus what later fields refer to.
 class SceneParser {
  public:
@@ -252,7 +282,8 @@ class SceneParser {
     try {
       pieces = kernel::cut_region(outline, sets, options);
     } catch (const kernel::InvalidCut& e) {
-      reader_.fail(path, e.what());
+      const auto [field, problem] = cut_error_at(path, e.what());
+      reader_.fail(field, problem);
     }
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       BlockSpec spec;
@@ -292,6 +323,19 @@ class SceneParser {
         }
       }
       scene.law.interfaces.push_back(std::move(face));
+    }
+    // An interface whose group no block has would never act: most likely a misspelt name.
+    for (std::size_t i = 0; i < scene.law.interfaces.size(); ++i) {
+      for (std::size_t g = 0; g < 2; ++g) {
+        const std::string& group = scene.law.interfaces[i].groups[g];
+        const bool used = std::any_of(scene.blocks.begin(), scene.blocks.end(),
+                                      [&](const BlockSpec& b) { return b.group == group; });
+        if (!used) {
+          reader_.fail(json_element(json_child(json_element("interfaces", i), "between"), g),
+                       "no block, region or boundary is in the group \"" + group +
+                           "\"; expected the group of one of them");
+        }
+      }
     }
   }
 

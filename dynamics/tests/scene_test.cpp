@@ -503,6 +503,8 @@ BOOST_AUTO_TEST_CASE(non_convex_blocks_are_accepted_when_simple) {
 // Interfaces take what they leave out from "contact".
 BOOST_AUTO_TEST_CASE(interfaces_fall_back_on_the_contact_defaults) {
   json document = contract_scene();
+  document["blocks"][0]["group"] = "boundary";
+  document["blocks"][1]["group"] = "rock";
   document["interfaces"] = json::parse(R"([{"between": ["rock", "boundary"], "friction_angle_deg": 35},
                                            {"between": ["rock", "rock"], "kn": 2e7, "kt": 5e6}])");
   const dyn::Scene scene = dyn::parse_scene(document, "interfaces.json");
@@ -527,7 +529,7 @@ BOOST_AUTO_TEST_CASE(region_joint_set_and_interface_errors) {
   expect_error(with("joint_sets", R"([{"dip_deg": 0, "spacing": 1}])"), "joint_sets",
                R"(joint sets cut a region; expected a "region" beside them)");
   expect_error(with("region", R"({"vertices": [[0,0],[0,1],[1,1],[1,0]], "material": "rock"})"),
-               "region", "clockwise");
+               "region.vertices", "clockwise");
   expect_error(with("region", R"({"vertices": [[0,0],[1,0],[1,1]], "material": "granite"})"),
                "region.material", R"(unknown material "granite")");
   expect_error(
@@ -559,6 +561,8 @@ BOOST_AUTO_TEST_CASE(region_joint_set_and_interface_errors) {
                "interfaces[1].between", "already have an interface (interfaces[0])");
   expect_error(with("interfaces", R"([{"between": ["a", "b"], "friction_angle_deg": 90}])"),
                "interfaces[0].friction_angle_deg", "in [0, 90)");
+  expect_error(with("interfaces", R"([{"between": ["a", "b"]}])"), "interfaces[0].between[0]",
+               R"(no block, region or boundary is in the group "a")");
   expect_error(
       [](json& d) {
         d["contact"].erase("kt");
