@@ -169,7 +169,15 @@ class SceneParser {
     scene.params.dt = reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
     scene.duration =
         reader_.positive(value.at("duration"), "time.duration", expected(time_fields, "duration"));
+    // The step count must be a number a run can reach (and a size_t can hold): 10^12 steps of
+    // the smallest scene would take weeks.
+    if (!(scene.duration / scene.params.dt <= max_steps)) {
+      reader_.fail("time", "duration / dt = " + json(scene.duration / scene.params.dt).dump() +
+                               " steps; expected at most 1e12 steps");
+    }
   }
+
+  static constexpr double max_steps = 1e12;
 
   void physics(const json& document, Scene& scene) const {
     if (document.contains("gravity")) {

@@ -4,7 +4,7 @@
 //
 //   {"description": text                                 (optional, ignored by the run)
 //    "dimension": 2                                       (3: "not supported yet")
-//    "time": {"dt": s > 0, "duration": s > 0},
+//    "time": {"dt": s > 0, "duration": s > 0},            (duration / dt at most 1e12 steps)
 //    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
 //    "plane": "stress" | "strain"                         (optional, default stress)
 //    "damping": alpha 1/s >= 0                            (optional, default 0: eq. 5c off)
