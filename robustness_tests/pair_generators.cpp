@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <initializer_list>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -33,7 +36,10 @@ std::uint64_t mix(std::uint64_t x) {
 }
 
 // Random numbers with distributions written out here: std::uniform_real_distribution and
-// friends are implementation-defined, the raw mt19937_64 sequence is not.
+// friends are implementation-defined, the raw mt19937_64 sequence is not. Every draw is a
+// statement of its own or the only draw of its full expression: the order in which a call's
+// arguments or an overloaded operator's operands are evaluated is unspecified (GCC goes right
+// to left, Clang left to right), and the stream must not depend on it.
 class Rng {
  public:
   explicit Rng(std::uint64_t seed) : engine_(seed) {}
@@ -59,8 +65,21 @@ class Rng {
   // (1 + u) 2^e with e uniform in [lo_exponent, hi_exponent]: log-uniform to within a factor
   // of two per octave; ldexp scales exactly.
   double octaves(int lo_exponent, int hi_exponent) {
-    return std::ldexp(1.0 + unit(), static_cast<int>(integer(lo_exponent, hi_exponent)));
+    const auto exponent = static_cast<int>(integer(lo_exponent, hi_exponent));
+    return std::ldexp(1.0 + unit(), exponent);
   }
+
+  // Log-uniform on [lo, hi] (0 < lo < hi) in the same sense: octaves() over the octaves that
+  // meet [lo, hi], draws outside it rejected (ilogb is exact).
+  double log_uniform(double lo, double hi) {
+    for (;;) {
+      const double x = octaves(std::ilogb(lo), std::ilogb(hi));
+      if (lo <= x && x <= hi) return x;
+    }
+  }
+
+  // A raw draw, for the seed of a base pair.
+  std::uint64_t bits() { return engine_(); }
 
  private:
   std::mt19937_64 engine_;
@@ -109,6 +128,15 @@ double snap(double x, int grid_exponent) {
 }
 Point2 snap(const Point2& p, int grid_exponent) {
   return {snap(p.x, grid_exponent), snap(p.y, grid_exponent)};
+}
+
+// A recipe's numbers: printf's %g and %.17g round correctly, so the text is the same on
+// every platform.
+template <class... Args>
+std::string format(const char* pattern, Args... args) {
+  std::array<char, 200> buffer{};
+  std::snprintf(buffer.data(), buffer.size(), pattern, args...);
+  return buffer.data();
 }
 
 [[noreturn]] void generator_bug(const std::string& what) {
@@ -194,7 +222,8 @@ Polygon outside_at(Rng& rng, const Point2& c, const Point2& p, const Point2& q,
   Polygon points{c};
   const auto count = rng.integer(2, 6);
   for (std::int64_t k = 0; k < count; ++k) {
-    Point2 x = c + rng.uniform(0.2, 1.0) * rightward(rng, u);
+    const Vector2 direction = rightward(rng, u);
+    Point2 x = c + rng.uniform(0.2, 1.0) * direction;
     if (grid_exponent) x = snap(x, *grid_exponent);
     if (orient(p, q, x) == Sign::negative) points.push_back(x);
   }
@@ -227,7 +256,8 @@ std::optional<PolygonPair> random_pair(Rng& rng) {
   if (!valid(local)) return std::nullopt;
   const Vector2 u = random_direction(rng);
   if (mode < 0.4) {
-    return pair_if_valid(cp, place_at_gap(cp, local, u, rng.uniform(-0.02, 0.02), lateral_offset(rng)));
+    const double lateral = lateral_offset(rng);
+    return pair_if_valid(cp, place_at_gap(cp, local, u, rng.uniform(-0.02, 0.02), lateral));
   }
   const double distance = rng.uniform(0.0, 0.9) * (radius(cp) + radius(local));
   return pair_if_valid(cp, translated(local, (vertex_mean(cp) - Point2{}) + distance * u));
@@ -254,7 +284,9 @@ std::optional<PolygonPair> short_edges_pair(Rng& rng) {
   Polygon cp = chamfered(rng, random_point(rng, 0.5));
   const Polygon local = chamfered(rng, {0.0, 0.0});
   if (!valid(cp) || !valid(local)) return std::nullopt;
-  Polygon tp = place_at_gap(cp, local, random_direction(rng), rng.uniform(-0.02, 0.005), lateral_offset(rng));
+  const double lateral = lateral_offset(rng);
+  const double gap = rng.uniform(-0.02, 0.005);
+  Polygon tp = place_at_gap(cp, local, random_direction(rng), gap, lateral);
   return pair_if_valid(std::move(cp), std::move(tp));
 }
 
@@ -303,18 +335,308 @@ std::optional<PolygonPair> near_parallel_pair(Rng& rng) {
   const Vector2 e = edge(k);
   const Vector2 outward = right_normal(unit(e));
   // tp's edge P0 -> P1 runs against e, turned by ~angle; tp lies on its left, outside cp.
-  const double angle = rng.sign() * rng.octaves(-39, -21);
+  const double angle_sign = rng.sign();
+  const double angle = angle_sign * rng.octaves(-39, -21);
   const Vector2 d = rotate(-unit(e), angle / 2.0);
-  const double offset = rng.chance(0.1) ? 0.0 : rng.sign() * rng.octaves(-50, -20);
+  double offset = 0.0;
+  if (!rng.chance(0.1)) {
+    const double offset_sign = rng.sign();
+    offset = offset_sign * rng.octaves(-50, -20);
+  }
   const Point2 p0 = cp[k] + rng.uniform(0.2, 1.5) * e + offset * outward;
   const double tp_length = rng.uniform(0.3, 1.2);
   Polygon points{p0, p0 + tp_length * d};
   const auto extra = rng.integer(1, 5);
   for (std::int64_t i = 0; i < extra; ++i) {
-    points.push_back(p0 + rng.uniform(0.1, 0.9) * tp_length * d +
-                     rng.uniform(0.1, 0.8) * left_normal(d));
+    const double across = rng.uniform(0.1, 0.8);
+    points.push_back(p0 + rng.uniform(0.1, 0.9) * tp_length * d + across * left_normal(d));
   }
   return pair_if_valid(std::move(cp), convex_hull(std::move(points)));
+}
+
+// ---- slivers ------------------------------------------------------------------------------
+
+// Thin polygons laid along a unit axis from a tip: the points tip + a axis + b n, n the left
+// normal, for the shape's local (a, b) with 0 <= a <= length and |b| <= h = width / 2. The
+// pointed shapes have the local point (0, 0), which is `tip` exactly (tip + 0 = tip), with a
+// half-angle below atan(2 / aspect) <= 1.2°; the rectangle has no vertex there. Every shape
+// contains the midline points tip + a axis, 0.2 length <= a <= 0.8 length, at least 0.1 width
+// from its boundary. diameter / width is the aspect (hexagon), aspect + 1 / (4 aspect)
+// (triangle) or sqrt(aspect^2 + 1) (diamond, rectangle): within 1e-12 relative of it.
+enum class SliverShape : std::uint8_t { triangle, diamond, hexagon, rectangle };
+
+constexpr std::array<const char*, 4> sliver_shape_names{"triangle", "diamond", "hexagon", "rectangle"};
+
+struct SliverSpec {
+  SliverShape shape;
+  double length;  // m
+  double aspect;  // length / width
+};
+
+struct Sliver {
+  Polygon polygon;
+  Point2 tip;
+  Vector2 axis;
+  SliverSpec spec;
+};
+
+SliverSpec draw_sliver_spec(Rng& rng, bool pointed) {
+  const auto shape = static_cast<SliverShape>(rng.index(pointed ? 3 : 4));
+  const double length = rng.uniform(0.5, 1.5);
+  return {shape, length, rng.log_uniform(1e2, 1e6)};
+}
+
+Sliver make_sliver(const SliverSpec& spec, const Point2& tip, const Vector2& axis) {
+  const double l = spec.length, h = 0.5 * spec.length / spec.aspect;
+  const Vector2 n = left_normal(axis);
+  Polygon points;
+  const auto add = [&](std::initializer_list<std::array<double, 2>> local) {
+    for (const auto& [a, b] : local) points.push_back(tip + (a * axis + b * n));
+  };
+  switch (spec.shape) {
+    case SliverShape::triangle: add({{0, 0}, {l, -h}, {l, h}}); break;
+    case SliverShape::diamond: add({{0, 0}, {l / 2, -h}, {l, 0}, {l / 2, h}}); break;
+    case SliverShape::hexagon: add({{0, 0}, {l / 4, -h}, {3 * l / 4, -h}, {l, 0}, {3 * l / 4, h}, {l / 4, h}}); break;
+    case SliverShape::rectangle: add({{0, -h}, {l, -h}, {l, h}, {0, h}}); break;
+  }
+  return {convex_hull(std::move(points)), tip, axis, spec};
+}
+
+// A sliver whose midline point at half its length is (to rounding) `centre`.
+Sliver sliver_about(const SliverSpec& spec, const Point2& centre, const Vector2& axis) {
+  return make_sliver(spec, centre + (-0.5 * spec.length) * axis, axis);
+}
+
+// A sliver of any (or a pointed) shape about a random point, along a random direction.
+Sliver random_sliver(Rng& rng, bool pointed) {
+  const SliverSpec spec = draw_sliver_spec(rng, pointed);
+  const Point2 centre = random_point(rng, 0.5);
+  return sliver_about(spec, centre, random_direction(rng));
+}
+
+Point2 on_midline(const Sliver& s, double fraction) { return s.tip + (fraction * s.spec.length) * s.axis; }
+
+std::string describe(const Sliver& s) {
+  return format("sliver aspect %.4g %s", s.spec.aspect, sliver_shape_names[static_cast<std::size_t>(s.spec.shape)]);
+}
+
+// The two polygons of a sliver pair before cp and tp are assigned: `second` was placed
+// against `first`.
+struct Placed {
+  Polygon first;
+  std::string first_text;
+  Polygon second;
+  std::string second_text;
+  std::string placement;
+};
+
+const std::string ordinary_text = "ordinary";
+
+// Both polygons contain the point p well inside, so they overlap whatever the rounding.
+Placed slivers_crossing(Rng& rng, bool two_slivers) {
+  const SliverSpec spec = draw_sliver_spec(rng, false);
+  const Vector2 axis = random_direction(rng);
+  if (two_slivers) {
+    const Point2 p = random_point(rng, 0.5);
+    const Sliver a = sliver_about(spec, p, axis);
+    // At 2.3° to 90° to the first.
+    const SliverSpec other = draw_sliver_spec(rng, false);
+    const double sign = rng.sign();
+    const Sliver b = sliver_about(other, p, rotate(axis, sign * rng.uniform(0.02, 1.0)));
+    return {a.polygon, describe(a), b.polygon, describe(b), "crossing"};
+  }
+  // The ordinary polygon lies within 1.2 * 0.6 * 0.35 = 0.42 length of its vertex mean p (an
+  // interior point), so the sliver, centred at p, runs through it and out on both sides.
+  const Polygon o = random_convex(rng, random_point(rng, 0.5), 10, 0.35 * spec.length);
+  const Sliver s = sliver_about(spec, vertex_mean(o), axis);
+  return {o, ordinary_text, s.polygon, describe(s), "crossing"};
+}
+
+// A pointed sliver's tip strictly inside the first polygon.
+Placed slivers_overlapping(Rng& rng, bool two_slivers) {
+  if (two_slivers) {
+    const Sliver a = random_sliver(rng, false);
+    const Point2 q = on_midline(a, rng.uniform(0.2, 0.8));
+    // Nearly along a, either way, within about twice b's own tip half-angle: the edges of the
+    // two are nearly parallel and cross at grazing angles.
+    const SliverSpec spec = draw_sliver_spec(rng, true);
+    const Vector2 along_a = rng.sign() * a.axis;
+    const Sliver b = make_sliver(spec, q, rotate(along_a, rng.uniform(-2.0, 2.0) / spec.aspect));
+    return {a.polygon, describe(a), b.polygon, describe(b), "overlapping"};
+  }
+  const Polygon o = random_convex(rng, random_point(rng, 0.5), 10, 1.0);
+  const Point2 mean = vertex_mean(o);
+  const Point2& corner = o[rng.index(o.size())];
+  const Point2 q = mean + rng.uniform(0.0, 0.8) * (corner - mean);
+  const SliverSpec spec = draw_sliver_spec(rng, true);
+  const Sliver s = make_sliver(spec, q, random_direction(rng));
+  return {o, ordinary_text, s.polygon, describe(s), "overlapping"};
+}
+
+// The second polygon has the vertex c of the first and otherwise lies strictly on the right of
+// the first's edge line c -> next (checked exactly): they touch at c only. A pointed sliver
+// leaves c at >= 3° to that line (rightward) with a half-angle <= 1.2°.
+Placed slivers_touching(Rng& rng, bool two_slivers) {
+  const bool sliver_first = two_slivers || rng.chance(0.5);
+  Polygon first;
+  std::string first_text = ordinary_text;
+  if (sliver_first) {
+    const Sliver a = random_sliver(rng, false);
+    first = a.polygon;
+    first_text = describe(a);
+  } else {
+    first = random_convex(rng, random_point(rng, 0.5), 10, 1.0);
+  }
+  const std::size_t i = rng.index(first.size());
+  const Point2 c = first[i], next = first[(i + 1) % first.size()];
+  Polygon second;
+  std::string second_text = ordinary_text;
+  if (two_slivers || !sliver_first) {
+    const SliverSpec spec = draw_sliver_spec(rng, true);
+    const Sliver b = make_sliver(spec, c, rightward(rng, unit(next - c)));
+    second = b.polygon;
+    second_text = describe(b);
+    for (const Point2& v : second) {
+      if (v != c && orient(c, next, v) != Sign::negative) generator_bug("touching sliver crosses the edge line");
+    }
+  } else {
+    second = outside_at(rng, c, c, next, std::nullopt);
+  }
+  return {first, first_text, second, second_text, "touching"};
+}
+
+// The second polygon moved so that its extreme vertex along -u is a small gap beyond the
+// first's extreme vertex along u: separated by a line, the gap (>= 2^-40 m) far above the
+// ~1e-15 m rounding of the placement.
+Placed slivers_separated(Rng& rng, bool two_slivers) {
+  const bool sliver_first = two_slivers || rng.chance(0.5);
+  const auto make = [&](bool sliver, const Point2& centre, std::string& text) {
+    if (!sliver) return random_convex(rng, centre, 10, 1.0);
+    const SliverSpec spec = draw_sliver_spec(rng, false);
+    const Sliver s = sliver_about(spec, centre, random_direction(rng));
+    text = describe(s);
+    return s.polygon;
+  };
+  std::string first_text = ordinary_text, second_text = ordinary_text;
+  const Polygon first = make(sliver_first, random_point(rng, 0.5), first_text);
+  const Polygon local = make(two_slivers || !sliver_first, {0.0, 0.0}, second_text);
+  const double gap = rng.octaves(-40, -8);
+  const Vector2 u = random_direction(rng);
+  const Polygon second = place_at_gap(first, local, u, gap, lateral_offset(rng));
+  return {first, first_text, second, second_text, format("separated, gap %.3g m", gap)};
+}
+
+std::optional<PolygonPair> sliver_pair(Rng& rng) {
+  const auto placement = rng.index(4);
+  const bool two_slivers = rng.chance(0.5);
+  Placed placed = placement == 0   ? slivers_crossing(rng, two_slivers)
+                  : placement == 1 ? slivers_overlapping(rng, two_slivers)
+                  : placement == 2 ? slivers_touching(rng, two_slivers)
+                                   : slivers_separated(rng, two_slivers);
+  const bool second_is_tp = rng.chance(0.5);
+  std::optional<PolygonPair> pair = second_is_tp ? pair_if_valid(std::move(placed.first), std::move(placed.second))
+                                                 : pair_if_valid(std::move(placed.second), std::move(placed.first));
+  if (!pair) return std::nullopt;
+  const std::string& cp_text = second_is_tp ? placed.first_text : placed.second_text;
+  const std::string& tp_text = second_is_tp ? placed.second_text : placed.first_text;
+  pair->recipe = "cp " + cp_text + ", tp " + tp_text + ", placement " + placed.placement;
+  return pair;
+}
+
+// ---- fine wedges and tiny edges -----------------------------------------------------------
+
+// tan x for |x| <= 0.01 by its Taylor series x + x^3/3 + 2 x^5/15 + 17 x^7/315; the first
+// term left out, 62 x^9/2835, is below 3e-20 x.
+double small_tan(double x) {
+  const double x2 = x * x;
+  return x * (1.0 + x2 * (1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (17.0 / 315.0))));
+}
+
+constexpr double degree = std::numbers::pi / 180.0;
+
+// cp a wedge; tp's tip at depth (in units of cp's local half-width, negative = outside) across
+// cp's left side at a fraction of its length, tp's axis leaving cp at 6° to 90° to that side.
+std::optional<PolygonPair> wedge_into_side(Rng& rng, double half_tan, double& depth) {
+  const double blunt = rng.chance(0.5) ? rng.uniform(0.2, 2.0) : 0.0;
+  const Point2 apex = random_point(rng, 0.5);
+  const Vector2 axis = random_direction(rng);
+  const double length = rng.uniform(0.8, 1.2);
+  Polygon cp = wedge(apex, axis, half_tan, length, length * half_tan * blunt);
+  const Vector2 side = axis + half_tan * left_normal(axis);
+  const Vector2 outward = unit(left_normal(side));
+  const double fraction = rng.uniform(0.2, 0.9);
+  depth = rng.uniform(-0.5, 1.0);
+  const Point2 tip = apex + (fraction * length) * side + (-depth * fraction * length * half_tan) * outward;
+  const double tp_length = rng.uniform(0.8, 1.2);
+  const double tp_back = rng.chance(0.5) ? tp_length * half_tan * rng.uniform(0.2, 2.0) : 0.0;
+  Polygon tp = wedge(tip, rotate(outward, rng.uniform(-0.9, 0.9)), half_tan, tp_length, tp_back);
+  return pair_if_valid(std::move(cp), std::move(tp));
+}
+
+std::optional<PolygonPair> fine_wedge_pair(Rng& rng) {
+  const double angle = rng.log_uniform(0.1 * degree, 1.0 * degree);
+  const double half_tan = small_tan(angle / 2.0);
+  const std::string text = format("angle_deg %.6g", angle / degree);
+  if (rng.chance(0.5)) {
+    std::optional<PolygonPair> pair = wedge_pair(rng, half_tan);
+    if (pair) pair->recipe = text + ", tip into tip";
+    return pair;
+  }
+  double depth = 0.0;
+  std::optional<PolygonPair> pair = wedge_into_side(rng, half_tan, depth);
+  if (pair) pair->recipe = text + format(", tip into a side, depth %.3g of its half-width", depth);
+  return pair;
+}
+
+// Largest vertex distance (m).
+double diameter(const Polygon& poly) {
+  double best = 0.0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    for (std::size_t j = i + 1; j < poly.size(); ++j) best = std::max(best, length(poly[j] - poly[i]));
+  }
+  return best;
+}
+
+// A random polygon with every corner cut by a chamfer chord of `relative` times its diameter
+// D (relative <= 1e-2), or nullopt when the polygon has a corner below 29° (|ua - ub| < 0.5)
+// or an edge below 0.05 D. Those bounds make the chamfers exact in length: each chamfer end
+// is d = relative D / |ua - ub| <= 2 relative D <= 0.02 D from its corner, so every original
+// edge keeps >= 0.05 D - 0.04 D = 0.01 D >= relative D, the shortest edge is a chamfer chord,
+// and the diameter shrinks by at most 4 relative D.
+std::optional<Polygon> tiny_chamfered(Rng& rng, const Point2& centre, double relative) {
+  const Polygon base = random_convex(rng, centre, 8, 1.0);
+  const double size = diameter(base);
+  Polygon points;
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    const Point2& v = base[i];
+    const Vector2 to_prev = base[(i + base.size() - 1) % base.size()] - v;
+    const Vector2 to_next = base[(i + 1) % base.size()] - v;
+    const double spread = length(unit(to_prev) + -unit(to_next));
+    if (spread < 0.5 || length(to_next) < 0.05 * size) return std::nullopt;
+    const double d = relative * size / spread;
+    points.push_back(v + d * unit(to_prev));
+    points.push_back(v + d * unit(to_next));
+  }
+  Polygon hull = convex_hull(std::move(points));
+  if (hull.size() != 2 * base.size()) return std::nullopt;
+  return hull;
+}
+
+std::optional<PolygonPair> tiny_edges_pair(Rng& rng) {
+  const double relative = rng.log_uniform(1e-6, 1e-2);
+  std::optional<Polygon> cp = tiny_chamfered(rng, random_point(rng, 0.5), relative);
+  if (!cp) return std::nullopt;
+  const std::optional<Polygon> local = tiny_chamfered(rng, {0.0, 0.0}, relative);
+  if (!local) return std::nullopt;
+  // Corner to corner at the chamfers' scale: a gap of -2 to +1 chamfer, laterally 0 or within
+  // 3 chamfers.
+  const double chamfer = relative * diameter(*cp);
+  const double gap = rng.uniform(-2.0, 1.0) * chamfer;
+  const double lateral = rng.chance(0.5) ? 0.0 : rng.uniform(-3.0, 3.0) * chamfer;
+  Polygon tp = place_at_gap(*cp, *local, random_direction(rng), gap, lateral);
+  std::optional<PolygonPair> pair = pair_if_valid(std::move(*cp), std::move(tp));
+  if (pair) pair->recipe = format("chamfer %.4g of the diameter, gap %.3g m, lateral %.3g m", relative, gap, lateral);
+  return pair;
 }
 
 // ---- dyadic families ------------------------------------------------------------------------
@@ -406,14 +728,14 @@ std::optional<PolygonPair> vertex_on_edge_pair(Rng& rng) {
   return pair_if_valid(std::move(cp), std::move(tp));
 }
 
-Polygon dyadic_convex(Rng& rng, const Point2& centre) {
+Polygon snapped_convex(Rng& rng, const Point2& centre, int grid_exponent) {
   Polygon points = random_convex(rng, centre, 10, 1.0);
-  for (Point2& p : points) p = snap(p, dyadic_grid);
+  for (Point2& p : points) p = snap(p, grid_exponent);
   return convex_hull(std::move(points));
 }
 
 std::optional<PolygonPair> vertex_on_vertex_pair(Rng& rng) {
-  Polygon cp = dyadic_convex(rng, snap(random_point(rng, 0.5), dyadic_grid));
+  Polygon cp = snapped_convex(rng, snap(random_point(rng, 0.5), dyadic_grid), dyadic_grid);
   if (!valid(cp)) return std::nullopt;
   const std::size_t n = cp.size(), i = rng.index(n);
   const Point2 c = cp[i], prev = cp[(i + n - 1) % n], next = cp[(i + 1) % n];
@@ -426,7 +748,8 @@ std::optional<PolygonPair> vertex_on_vertex_pair(Rng& rng) {
     const Vector2 u = unit(next - c);
     const auto count = rng.integer(2, 6);
     for (std::int64_t k = 0; k < count; ++k) {
-      points.push_back(snap(c + rng.uniform(0.2, 1.0) * turned_in(rng, u, 0.5), dyadic_grid));
+      const Vector2 direction = turned_in(rng, u, 0.5);
+      points.push_back(snap(c + rng.uniform(0.2, 1.0) * direction, dyadic_grid));
     }
     tp = convex_hull(std::move(points));
   }
@@ -476,7 +799,8 @@ Polygon lattice_polygon(Rng& rng, std::int64_t i0, std::int64_t j0) {
   Polygon points;
   const auto count = rng.integer(4, 10);
   for (std::int64_t k = 0; k < count; ++k) {
-    points.push_back(lattice_point(i0 + rng.integer(0, 8), j0 + rng.integer(0, 8)));
+    const std::int64_t j = j0 + rng.integer(0, 8);
+    points.push_back(lattice_point(i0 + rng.integer(0, 8), j));
   }
   return convex_hull(std::move(points));
 }
@@ -485,7 +809,8 @@ std::optional<PolygonPair> lattice_touch_pair(Rng& rng) {
   Polygon cp = lattice_polygon(rng, 0, 0);
   if (!valid(cp)) return std::nullopt;
   if (rng.chance(0.5)) {
-    Polygon tp = lattice_polygon(rng, rng.integer(-6, 6), rng.integer(-6, 6));
+    const std::int64_t j0 = rng.integer(-6, 6);
+    Polygon tp = lattice_polygon(rng, rng.integer(-6, 6), j0);
     return pair_if_valid(std::move(cp), std::move(tp));
   }
   // tp in the closed outer half-plane of cp's edge P -> Q, through a lattice point T of PQ.
@@ -499,10 +824,188 @@ std::optional<PolygonPair> lattice_touch_pair(Rng& rng) {
   Polygon points{t};
   const auto count = rng.integer(2, 7);
   for (std::int64_t attempt = 0; attempt < 64 && std::ssize(points) <= count; ++attempt) {
-    const Point2 x = lattice_point(rng.integer(-8, 16), rng.integer(-8, 16));
+    const std::int64_t j = rng.integer(-8, 16);
+    const Point2 x = lattice_point(rng.integer(-8, 16), j);
     if (orient(p, q, x) != Sign::positive) points.push_back(x);
   }
   return pair_if_valid(std::move(cp), convex_hull(std::move(points)));
+}
+
+// ---- exact incidences on generic lines ------------------------------------------------------
+
+// Grid of the polygons of near_parallel_ulp and nested (m). Their random polygons lie within
+// 1.1 m of the origin, so on this grid B - A is a multiple of 2^-30 below 4 (exact), and for
+// s = j / 2^m, m <= 20, s (B - A) is a multiple of 2^-50 below 4 and A + s (B - A) one below
+// 2: at most 52 significant bits each, so the point is computed exactly and lies on the line
+// A -> B, whose slope is a generic 31-bit fraction.
+constexpr int incidence_grid = -30;
+
+Point2 exactly_on_line(const Point2& a, const Point2& b, std::int64_t j, int m) {
+  const Point2 p = a + std::ldexp(static_cast<double>(j), -m) * (b - a);
+  if (orient(a, b, p) != Sign::zero) generator_bug("a point A + j / 2^m (B - A) is off the line A -> B");
+  return p;
+}
+
+// p with one coordinate moved by one ulp to the `side` of the line a -> b (decided exactly):
+// the x coordinate when the line is steeper than 45°, else y, so that the move is mostly
+// across the line. Moving x by e changes (b - a) x (p - a) by -(b.y - a.y) e, nonzero, so one
+// of the two directions gives each side.
+Point2 one_ulp_to(const Point2& a, const Point2& b, const Point2& p, Sign side) {
+  const bool move_x = std::fabs(b.y - a.y) >= std::fabs(b.x - a.x);
+  for (const double towards : {HUGE_VAL, -HUGE_VAL}) {
+    Point2 q = p;
+    double& coordinate = move_x ? q.x : q.y;
+    coordinate = std::nextafter(coordinate, towards);
+    if (orient(a, b, q) == side) return q;
+  }
+  generator_bug("no one-ulp move reaches the side");
+}
+
+bool strictly_inside(const Polygon& poly, const Point2& x) {
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    if (orient(poly[k], poly[(k + 1) % poly.size()], x) != Sign::positive) return false;
+  }
+  return true;
+}
+
+std::optional<PolygonPair> near_parallel_ulp_pair(Rng& rng) {
+  const Point2 centre = random_point(rng, 0.5);
+  Polygon cp = snapped_convex(rng, centre, incidence_grid);
+  if (!valid(cp)) return std::nullopt;
+  std::size_t k = rng.index(cp.size());
+  const auto edge = [&](std::size_t i) { return cp[(i + 1) % cp.size()] - cp[i]; };
+  if (length(edge(k)) < 0.1) {
+    for (std::size_t i = 0; i < cp.size(); ++i) {
+      if (length(edge(i)) > length(edge(k))) k = i;
+    }
+    if (length(edge(k)) < 0.1) return std::nullopt;
+  }
+  const Point2 a = cp[k], b = cp[(k + 1) % cp.size()];
+  // The on-line point in the middle half of the edge.
+  const int m = static_cast<int>(rng.integer(2, 20));
+  const std::int64_t quarter = std::int64_t{1} << (m - 2);
+  const Point2 on_line = exactly_on_line(a, b, rng.integer(quarter, 3 * quarter), m);
+  const auto variant = rng.integer(0, 2);
+  static constexpr std::array<const char*, 3> variant_names{
+      "P0 on the cp edge line", "P0 one ulp inside the cp edge line", "P0 one ulp outside the cp edge line"};
+  const Point2 p0 =
+      variant == 0 ? on_line : one_ulp_to(a, b, on_line, variant == 1 ? Sign::positive : Sign::negative);
+  // tp's edge P0 -> P1 runs against A -> B turned by `angle`: for angle > 0 its far end is
+  // outside cp's edge line, for angle < 0 inside; tp lies on its left, cp's outside.
+  const double magnitude = rng.log_uniform(1e-13, 1e-11);
+  const double angle = rng.sign() * magnitude;
+  const Vector2 d = rotate(-unit(b - a), angle / 2.0);
+  const double tp_length = rng.uniform(0.3, 1.2);
+  Polygon points{p0, p0 + tp_length * d};
+  const auto extra = rng.integer(1, 5);
+  for (std::int64_t i = 0; i < extra; ++i) {
+    const double along_d = rng.uniform(0.1, 0.9) * tp_length;
+    points.push_back(p0 + along_d * d + rng.uniform(0.1, 0.8) * left_normal(d));
+  }
+  Polygon tp = convex_hull(std::move(points));
+  if (!contains_vertex(tp, p0)) generator_bug("P0 is not a vertex of tp");
+  std::optional<PolygonPair> pair = pair_if_valid(std::move(cp), std::move(tp));
+  if (pair) {
+    pair->recipe = format("%s, angle %.3g rad %s", variant_names[static_cast<std::size_t>(variant)], angle,
+                          angle > 0.0 ? "(turned away from cp)" : "(turned into cp)");
+  }
+  return pair;
+}
+
+// A point strictly inside `outer` (checked exactly; nullopt when rounding put it elsewhere):
+// on the segment from the vertex mean to a random boundary point.
+std::optional<Point2> interior_point(Rng& rng, const Polygon& outer) {
+  const Point2 c = vertex_mean(outer);
+  const std::size_t k = rng.index(outer.size());
+  const Point2 q = outer[k] + rng.unit() * (outer[(k + 1) % outer.size()] - outer[k]);
+  const Point2 x = c + rng.uniform(0.05, 0.95) * (q - c);
+  if (!strictly_inside(outer, x)) return std::nullopt;
+  return x;
+}
+
+std::optional<PolygonPair> nested_pair(Rng& rng) {
+  static constexpr std::array<const char*, 4> variant_names{
+      "strictly", "touching: a vertex on an edge", "touching: along an edge", "touching: a shared vertex"};
+  const auto variant = rng.integer(0, 3);
+  const Point2 centre = random_point(rng, 0.5);
+  Polygon outer = snapped_convex(rng, centre, incidence_grid);
+  if (!valid(outer)) return std::nullopt;
+  const std::size_t k = rng.index(outer.size());
+  const Point2 a = outer[k], b = outer[(k + 1) % outer.size()];
+  Polygon boundary_points;
+  if (variant == 1 || variant == 2) {
+    const int m = static_cast<int>(rng.integer(variant == 1 ? 1 : 2, 20));
+    const std::int64_t last = (std::int64_t{1} << m) - 1;
+    const std::int64_t j0 = rng.integer(1, variant == 1 ? last : last - 1);
+    boundary_points.push_back(exactly_on_line(a, b, j0, m));
+    if (variant == 2) boundary_points.push_back(exactly_on_line(a, b, rng.integer(j0 + 1, last), m));
+  } else if (variant == 3) {
+    boundary_points.push_back(a);
+  }
+  Polygon points = boundary_points;
+  const auto count = rng.integer(3, 8);
+  for (std::int64_t i = 0; i < count; ++i) {
+    if (const std::optional<Point2> x = interior_point(rng, outer)) points.push_back(*x);
+  }
+  // The boundary points are on the line A -> B and every other point strictly left of it, so
+  // they are extreme: vertices of the inner hull.
+  Polygon inner = convex_hull(std::move(points));
+  for (const Point2& p : boundary_points) {
+    if (valid(inner) && !contains_vertex(inner, p)) generator_bug("nested: lost a boundary vertex");
+  }
+  const bool inner_is_tp = rng.chance(0.5);
+  std::optional<PolygonPair> pair = inner_is_tp ? pair_if_valid(std::move(outer), std::move(inner))
+                                                : pair_if_valid(std::move(inner), std::move(outer));
+  if (pair) {
+    pair->recipe = std::string(inner_is_tp ? "tp inside cp, " : "cp inside tp, ") +
+                   variant_names[static_cast<std::size_t>(variant)];
+  }
+  return pair;
+}
+
+// The polygon with vertex i's x (or y) moved by one ulp, if it stays strictly convex with the
+// same vertices (decided by the exact hull).
+std::optional<Polygon> moved_by_one_ulp(const Polygon& poly, std::size_t i, bool move_x, double towards) {
+  Polygon moved = poly;
+  double& coordinate = move_x ? moved[i].x : moved[i].y;
+  coordinate = std::nextafter(coordinate, towards);
+  const Point2 v = moved[i];
+  Polygon hull = convex_hull(std::move(moved));
+  if (hull.size() != poly.size() || !contains_vertex(hull, v)) return std::nullopt;
+  return hull;
+}
+
+std::optional<PolygonPair> identical_pair(Rng& rng) {
+  Polygon cp;
+  std::string shape = "ordinary";
+  if (rng.chance(0.6)) {
+    const Point2 centre = random_point(rng, 0.5);
+    cp = random_convex(rng, centre, 10, 1.0);
+  } else {
+    const Sliver s = random_sliver(rng, false);
+    cp = s.polygon;
+    shape = describe(s);
+  }
+  if (!valid(cp)) return std::nullopt;
+  if (rng.chance(0.5)) {
+    Polygon tp = cp;
+    std::optional<PolygonPair> pair = pair_if_valid(std::move(cp), std::move(tp));
+    if (pair) pair->recipe = "cp " + shape + ", tp the same vertices";
+    return pair;
+  }
+  const std::size_t i = rng.index(cp.size());
+  const bool move_x = rng.chance(0.5);
+  const double towards = rng.sign() * HUGE_VAL;
+  std::optional<Polygon> tp = moved_by_one_ulp(cp, i, move_x, towards);
+  if (!tp) return std::nullopt;
+  const bool swap = rng.chance(0.5);
+  std::optional<PolygonPair> pair = swap ? pair_if_valid(std::move(*tp), std::move(cp))
+                                         : pair_if_valid(std::move(cp), std::move(*tp));
+  if (pair) {
+    pair->recipe = format("%s %s, %s the same but one vertex's %s moved one ulp %s", swap ? "tp" : "cp",
+                          shape.c_str(), swap ? "cp" : "tp", move_x ? "x" : "y", towards > 0.0 ? "up" : "down");
+  }
+  return pair;
 }
 
 // ---- far from the origin --------------------------------------------------------------------
@@ -526,6 +1029,73 @@ std::optional<PolygonPair> offset_pair(Rng& rng) {
   return far;
 }
 
+// ---- meta families ------------------------------------------------------------------------
+
+// The families a meta family draws its base pair from.
+constexpr std::array<Family, 15> plain_families{
+    Family::random,           Family::short_edges,  Family::wedge_5deg,     Family::wedge_0_5deg,
+    Family::near_parallel,    Family::vertex_on_edge, Family::vertex_on_vertex, Family::edge_on_edge,
+    Family::lattice_touch,    Family::sliver,       Family::wedge_0_1deg,   Family::tiny_edges,
+    Family::near_parallel_ulp, Family::nested,      Family::identical};
+
+// A base pair named by its own (family, seed, index), so a recipe that quotes the base's
+// recipe regenerates it.
+PolygonPair base_pair(Rng& rng) {
+  const Family family = plain_families[rng.index(plain_families.size())];
+  return generate_pair(family, rng.bits(), 0);
+}
+
+double largest_coordinate(const PolygonPair& pair) {
+  double best = 0.0;
+  for (const Polygon* poly : {&pair.cp, &pair.tp}) {
+    for (const Point2& p : *poly) best = std::max({best, std::fabs(p.x), std::fabs(p.y)});
+  }
+  return best;
+}
+
+std::optional<PolygonPair> far_offset_pair(Rng& rng) {
+  const PolygonPair base = base_pair(rng);
+  const double x = rng.log_uniform(1e6, 1e9);
+  const double x_sign = rng.sign();
+  const double y = rng.log_uniform(1e6, 1e9);
+  const double y_sign = rng.sign();
+  // 2^e > |offset| + |base coordinates| + 1 (the 1 m covers the rounding of the snaps), and
+  // the grid 2^(e - 53): see the header.
+  const double bound = std::max(x, y) + largest_coordinate(base) + 1.0;
+  int e = 0;
+  while (std::ldexp(1.0, e) <= bound) ++e;
+  const int grid = e - 53;
+  const Vector2 offset{snap(x_sign * x, grid), snap(y_sign * y, grid)};
+  const std::optional<PolygonPair> snapped = snap_to_grid(base, grid);
+  if (!snapped) return std::nullopt;
+  std::optional<PolygonPair> far = translate_exactly(*snapped, offset);
+  if (!far) generator_bug("the translation by " + format("(%.17g, %.17g)", offset.x, offset.y) + " was not exact");
+  far->recipe = format("offset (%.3g, %.3g), grid 2^%d, base ", offset.x, offset.y, grid) + base.recipe;
+  return far;
+}
+
+std::optional<PolygonPair> rotated_pair(Rng& rng) {
+  const PolygonPair base = base_pair(rng);
+  const double t = std::ldexp(static_cast<double>(rng.integer(-(1 << 16), 1 << 16)), -16);
+  const bool half_turn = rng.chance(0.5);
+  const double centre_x = std::ldexp(static_cast<double>(rng.integer(-256, 256)), -8);
+  const Point2 centre{centre_x, std::ldexp(static_cast<double>(rng.integer(-256, 256)), -8)};
+  const auto turned = [&](const Polygon& poly) {
+    Polygon out;
+    for (const Point2& p : poly) {
+      const Vector2 r = rotate(p - centre, t);
+      out.push_back(centre + (half_turn ? -r : r));
+    }
+    return convex_hull(std::move(out));
+  };
+  std::optional<PolygonPair> pair = pair_if_valid(turned(base.cp), turned(base.tp));
+  if (pair) {
+    pair->recipe = format("t %.17g%s, centre (%.17g, %.17g), base ", t, half_turn ? " plus a half turn" : "",
+                          centre.x, centre.y) + base.recipe;
+  }
+  return pair;
+}
+
 std::optional<PolygonPair> generate_once(Family family, Rng& rng) {
   switch (family) {
     case Family::random: return random_pair(rng);
@@ -538,6 +1108,14 @@ std::optional<PolygonPair> generate_once(Family family, Rng& rng) {
     case Family::edge_on_edge: return edge_on_edge_pair(rng);
     case Family::offset_1e6: return offset_pair(rng);
     case Family::lattice_touch: return lattice_touch_pair(rng);
+    case Family::sliver: return sliver_pair(rng);
+    case Family::wedge_0_1deg: return fine_wedge_pair(rng);
+    case Family::tiny_edges: return tiny_edges_pair(rng);
+    case Family::near_parallel_ulp: return near_parallel_ulp_pair(rng);
+    case Family::nested: return nested_pair(rng);
+    case Family::identical: return identical_pair(rng);
+    case Family::offset_1e9: return far_offset_pair(rng);
+    case Family::rotated: return rotated_pair(rng);
   }
   generator_bug("unknown family");
 }
@@ -569,6 +1147,14 @@ std::string_view to_string(Family family) {
     case Family::edge_on_edge: return "edge_on_edge";
     case Family::offset_1e6: return "offset_1e6";
     case Family::lattice_touch: return "lattice_touch";
+    case Family::sliver: return "sliver";
+    case Family::wedge_0_1deg: return "wedge_0_1deg";
+    case Family::tiny_edges: return "tiny_edges";
+    case Family::near_parallel_ulp: return "near_parallel_ulp";
+    case Family::nested: return "nested";
+    case Family::identical: return "identical";
+    case Family::offset_1e9: return "offset_1e9";
+    case Family::rotated: return "rotated";
   }
   return "?";
 }

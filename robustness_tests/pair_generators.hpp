@@ -12,7 +12,8 @@
 // Determinism: std::mt19937_64 (its output sequence is fixed by the C++ standard) with
 // distributions written here, and no transcendental function: directions come from the
 // rational parametrisation of the circle, ((1 - t^2), 2 t) / (1 + t^2), so only + - * / and
-// sqrt (correctly rounded by IEEE 754) and ldexp and round (exact) touch the numbers. Build
+// sqrt (correctly rounded by IEEE 754) and ldexp, round and nextafter (exact) touch the
+// numbers; angles are drawn as numbers and turned into tangents by a short series. Build
 // with -ffp-contract=off (the rockcontact_options target does) so that no fused multiply-add
 // changes a last bit.
 //
@@ -51,6 +52,54 @@
 //   lattice_touch     vertices on the lattice (Z / 8)^2 within 1-2 m; half of the pairs put tp
 //                     in the closed outer half-plane of a cp edge through a lattice point of
 //                     that edge (an exact touch), half are two independent lattice polygons.
+//   sliver            thin triangles, diamonds, hexagons and rectangles 0.5-1.5 m long with
+//                     length / width log-uniform in [1e2, 1e6] (diameter / width within 1e-12
+//                     of it), against another sliver or an ordinary polygon: crossing (both
+//                     contain a common point, well inside), overlapping (a sliver's tip inside
+//                     the other polygon; two slivers nearly aligned, within about the tip's own
+//                     angle), touching (a sliver's tip at the other's vertex, or an ordinary
+//                     polygon at a sliver's vertex, exactly, from outside an edge line) or
+//                     separated by a gap of 1e-12 to 8e-3 m.
+//   wedge_0_1deg      wedges as in wedge_5deg with an apex angle log-uniform in [0.1°, 1°]:
+//                     tips poking into each other, or a tip poking into a long side (up to half
+//                     the local width deep, or short of it) at 6° to 90° from it.
+//   tiny_edges        random polygons (corners >= 29°, edges >= 0.05 of the diameter) with every
+//                     corner cut by a chamfer edge of c times the diameter, c log-uniform in
+//                     [1e-6, 1e-2]; tp placed corner to corner with cp at a gap of -2c .. c
+//                     times the diameter, laterally 0 or within 3c.
+//   near_parallel_ulp a tp edge P0 -> P1 facing a cp edge A -> B at an angle log-uniform in
+//                     [1e-13, 1e-11] rad, turned away from cp or into it; P0 exactly on the
+//                     line A -> B (cp snapped to 2^-30 m, P0 = A + j / 2^m (B - A)), or that
+//                     point with one coordinate moved by one ulp (std::nextafter) to the inside
+//                     or the outside of the line, the side checked with exact orientation.
+//   nested            the inner polygon (tp or cp) strictly inside the outer one, or touching
+//                     its boundary from inside: a vertex exactly on an outer edge, an edge
+//                     along an outer edge, or a shared vertex.
+//   identical         tp has exactly cp's vertices (from another start vertex), or all of them
+//                     but one, moved by one ulp in one coordinate (still strictly convex).
+//   offset_1e9        a pair of one of the non-meta families above, snapped to the grid
+//                     2^(E - 53) m and translated by (+-X, +-Y), X and Y log-uniform in [1e6,
+//                     1e9] m, where 2^E exceeds |offset| + |coordinates| + 1: every snapped
+//                     coordinate, the offset and each sum are multiples of 2^(E - 53) below 2^E,
+//                     so each has at most 53 significant bits and the translation is exact
+//                     (checked). At 1e9 m the grid is 2^-23 m ~ 1.2e-7 m: the base's sub-grid
+//                     features (1-ulp moves, the thinnest slivers, 1e-6 m chamfers) are rounded
+//                     to grid size or away, as they would be in a model that far out.
+//   rotated           a pair of a uniformly chosen non-meta family rotated as a whole by the
+//                     rational rotation ((1 - t^2), 2 t) / (1 + t^2), t = k / 2^16 in [-1, 1],
+//                     possibly plus a half turn, about a centre on the grid 2^-8 m within 1 m,
+//                     each polygon re-hulled. The rotated coordinates are rounded: the base's
+//                     exact incidences (vertex on edge, collinear edges, shared vertices, 1-ulp
+//                     crossings) become near-incidences at the rounding level, which is the
+//                     point: the same configurations in general position.
+//   The two meta families (offset_1e9, rotated) generate their base with generate_pair and a
+//   seed drawn from their own stream, and the recipe names it ("base FAMILY seed S index 0: ..."),
+//   so the base is regenerated from the recipe alone.
+//
+// Recipes: the family's parameters follow the prefix ("aspect", "angle_deg", "chamfer",
+// "placement", "offset", "grid", "t", "centre", "base"), numbers printed with %g (correctly
+// rounded, the same text on every platform); the rotation's t and centre are dyadic and printed
+// exactly.
 
 #include <array>
 #include <cstdint>
@@ -77,12 +126,24 @@ enum class Family : std::uint8_t {
   edge_on_edge,
   offset_1e6,
   lattice_touch,
+  sliver,
+  wedge_0_1deg,
+  tiny_edges,
+  near_parallel_ulp,
+  nested,
+  identical,
+  offset_1e9,
+  rotated,
 };
 
-inline constexpr std::array<Family, 10> all_families{
+// New families are appended: a family's enumerator value seeds its stream, so the existing
+// streams stay as they were.
+inline constexpr std::array<Family, 18> all_families{
     Family::random,         Family::short_edges,    Family::wedge_5deg,       Family::wedge_0_5deg,
     Family::near_parallel,  Family::vertex_on_edge, Family::vertex_on_vertex, Family::edge_on_edge,
-    Family::offset_1e6,     Family::lattice_touch};
+    Family::offset_1e6,     Family::lattice_touch,  Family::sliver,           Family::wedge_0_1deg,
+    Family::tiny_edges,     Family::near_parallel_ulp, Family::nested,        Family::identical,
+    Family::offset_1e9,     Family::rotated};
 
 std::string_view to_string(Family family);
 std::optional<Family> parse_family(std::string_view name);
