@@ -319,7 +319,7 @@ std::string resting_block_refusal(double kn_over_e, double dt_fraction) {
   return {};
 }
 
-SqueezedRun squeezed_block(double dt_over_model, std::size_t steps) {
+SqueezedRun squeezed_block(double dt_over_estimate, std::size_t steps) {
   const auto start = Clock::now();
   SqueezedRun r;
   constexpr double depth = 1.0e-4;  // m, initial overlap on every face
@@ -343,7 +343,7 @@ SqueezedRun squeezed_block(double dt_over_model, std::size_t steps) {
   const double es = -2.0 * kf * depth * side / Ke;
   r.energy_scale = 0.5 * Ke * es * es;
   r.dt_estimate = estimate_of(blocks, law, false);
-  r.dt = dt_over_model * r.dt_model;
+  r.dt = dt_over_estimate * r.dt_estimate;
   try {
     Dda2d sim(blocks, law, step_params(r.dt, false));
     const double e0 = sim.energies().total();

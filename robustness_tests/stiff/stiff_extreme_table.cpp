@@ -92,34 +92,36 @@ void dt_sweep() {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool named = message.find("above the critical time step") != std::string::npos &&
-                       message.find("block 'block'") != std::string::npos;
+                       message.find("block 'block': elastic stiffness") != std::string::npos;
     add(s, "dt/dt_est = " + fmt(f), message.empty() ? "accepted" : "refused: " + cell(message),
         "refused, naming dt, the estimate and the block", named, seconds);
   }
-  for (double f : {0.95, 1.05, 1.2}) {
+  // The squeezed block: at the estimate the run is below the dilatation mode's true limit
+  // (the estimate is conservative) and bounded; just above the estimate it is refused.
+  for (double f : {0.5, 1.0, 1.01}) {
     const SqueezedRun r = squeezed_block(f, 2000);
-    const std::string p = "squeezed block, kn/E = " + fmt(r.kn_over_e, 3) + ": dt/dt_model = " +
-                          fmt(f) + ", dt/dt_est = " + fmt(r.dt / r.dt_estimate, 3);
-    if (f < 1.0) {
+    const double q = r.dt / r.dt_model;  // omega h / 2 of the dilatation mode
+    const std::string p = "squeezed block, kn/E = " + fmt(r.kn_over_e, 3) + ": dt/dt_est = " +
+                          fmt(f) + ", dt/dt_model = " + fmt(q, 3);
+    if (f <= 1.0) {
       const double allowance = model_energy_allowance * r.energy_scale;
       add("dt sweep: squeezed block", p,
           (r.stopped || r.refused ? "stopped: " + cell(r.message)
                                   : std::to_string(r.steps) + " steps, energy dip " +
                                         fmt(r.energy_drop) + ", rise " + fmt(r.energy_rise) +
                                         " J/m (E_osc " + fmt(r.energy_scale) + ")"),
-          "completes; dip <= (omega h/2)² E_osc = " + fmt(f * f * r.energy_scale) + ", rise <= " +
-              fmt(allowance),
-          !r.stopped && !r.refused && r.energy_drop <= (f * f) * r.energy_scale + allowance &&
-              r.energy_rise <= allowance,
+          "dt/dt_model <= 1; completes; dip <= (omega h/2)² E_osc = " +
+              fmt(q * q * r.energy_scale) + ", rise <= " + fmt(allowance),
+          q <= 1.0 && !r.stopped && !r.refused &&
+              r.energy_drop <= q * q * r.energy_scale + allowance && r.energy_rise <= allowance,
           r.seconds);
     } else {
-      const bool diagnosed = (r.refused || r.stopped) &&
-                             r.message.find("block 'squeezed'") != std::string::npos;
+      const bool diagnosed = r.refused && r.message.find("block 'squeezed'") != std::string::npos;
       add("dt sweep: squeezed block", p,
           (r.refused ? "refused: " : r.stopped ? "monitor stopped step " + std::to_string(r.steps) + ": "
                                                : "completed ") +
               cell(r.message),
-          "refused or stopped, naming the block", diagnosed, r.seconds);
+          "refused, naming the block", diagnosed, r.seconds);
     }
   }
 }

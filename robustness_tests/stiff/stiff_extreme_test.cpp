@@ -70,38 +70,34 @@ BOOST_AUTO_TEST_CASE(dt_below_the_estimate_is_bounded_and_above_it_is_refused) {
     const std::string message = resting_block_refusal(1e-2, f);
     BOOST_TEST_MESSAGE(message);
     BOOST_TEST(has(message, "dt = "));
-    BOOST_TEST(has(message, "above the critical time step 0.000707107 s"));  // 2 / sqrt(8e6)
-    BOOST_TEST(has(message, "elastic stiffness of block 'block'"));
+    BOOST_TEST(has(message, "above the critical time step"));
+    BOOST_TEST(has(message, "block 'block': elastic stiffness"));
   }
 }
 
 // The squeezed block's dilatation mode carries the elastic and the contact stiffness together,
-// omega² = 12 E / (rho l² (1 - nu)) + 12 kn / (rho H l) (stiff_extreme.cpp), while the
-// estimate takes the larger of its elastic bound and its contact bound; at kn/E = 0.571 they
-// are equal and the true limit is 0.837 of the estimate. Below the true limit the run is
-// bounded; just above it (still below the estimate) it diverges, and the monitor must stop it
-// naming the block; an estimate that summed the two would refuse it instead, also accepted.
-BOOST_AUTO_TEST_CASE(a_run_above_the_true_limit_is_stopped_with_a_diagnosis) {
-  const SqueezedRun below = squeezed_block(0.95, 300);
-  BOOST_TEST_MESSAGE("squeezed, dt/dt_model 0.95: dt/dt_est " << below.dt / below.dt_estimate
-                                                              << ", energy dip " << below.energy_drop
-                                                              << " of " << below.energy_scale);
-  BOOST_TEST(!below.refused);
-  BOOST_TEST(!below.stopped);
-  BOOST_TEST(below.steps == 300u);
-  // Verlet dips by (omega h / 2)² = 0.95² of the mode's energy at most, never rises.
-  BOOST_TEST(below.energy_drop <= (0.95 * 0.95 + model_energy_allowance) * below.energy_scale);
-  BOOST_TEST(below.energy_rise <= model_energy_allowance * below.energy_scale);
+// omega² = 12 E / (rho l² (1 - nu)) + 12 kn / (rho H l) (stiff_extreme.cpp). At kn/E = 0.571,
+// where the two are equal, an estimate taking the larger alone was 1.19 times the true limit
+// (the run diverged); the estimate now adds them, so it must lie below the mode's limit, a run
+// at the estimate must stay bounded, and one just above it must be refused naming the block.
+BOOST_AUTO_TEST_CASE(the_estimate_is_conservative_for_a_squeezed_block) {
+  const SqueezedRun at = squeezed_block(1.0, 300);
+  const double q = at.dt / at.dt_model;  // omega h / 2 of the dilatation mode
+  BOOST_TEST_MESSAGE("squeezed at the estimate: dt/dt_model " << q << ", energy dip "
+                                                              << at.energy_drop << " of "
+                                                              << at.energy_scale);
+  BOOST_TEST(q <= 1.0);
+  BOOST_TEST(!at.refused);
+  BOOST_TEST(!at.stopped);
+  BOOST_TEST(at.steps == 300u);
+  // Verlet dips by (omega h / 2)² of the mode's energy at most, never rises.
+  BOOST_TEST(at.energy_drop <= (q * q + model_energy_allowance) * at.energy_scale);
+  BOOST_TEST(at.energy_rise <= model_energy_allowance * at.energy_scale);
 
-  const SqueezedRun above = squeezed_block(1.05, 300);
-  BOOST_TEST_MESSAGE("squeezed, dt/dt_model 1.05 (dt/dt_est " << above.dt / above.dt_estimate
-                                                              << "): " << above.message);
-  BOOST_TEST((above.refused || above.stopped));
+  const SqueezedRun above = squeezed_block(1.01, 300);
+  BOOST_TEST_MESSAGE("squeezed, dt/dt_est 1.01: " << above.message);
+  BOOST_TEST(above.refused);
   BOOST_TEST(has(above.message, "block 'squeezed'"));
-  if (above.stopped) {
-    BOOST_TEST(has(above.message, "total energy grew"));
-    BOOST_TEST(above.steps < 300u);
-  }
 }
 
 BOOST_AUTO_TEST_CASE(mass_ratio_of_a_million_either_way) {

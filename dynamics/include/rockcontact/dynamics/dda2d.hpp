@@ -63,6 +63,12 @@
 //     with A = kn / H · P + kt) or times 1 when i can only meet fixed blocks (c_j = 0), with the
 //     largest kn and kt of all interfaces. A block pressed by several neighbours at once can
 //     exceed a single pair's estimate; the monitor below stops such a run.
+//   * per block, the two add: omega_i² = strain bound + contact bound. Both stiffnesses act on
+//     the same degrees of freedom (a block squeezed on every face dilates against its elastic
+//     and its contact stiffness at once), and the largest eigenvalue of a sum of two symmetric
+//     positive semi-definite operators is at most the sum of theirs (Weyl). The larger of the
+//     two alone overestimated the limit by up to sqrt(2): robustness_tests/stiff measured a
+//     squeezed square diverging at 0.878 of that older estimate.
 // For the paper's sets (seed 000 Tables 4-5: rho 2000, E 0.1-1 GPa, kn 1e7-5e7 Pa, H ~ 1 m,
 // blocks ~1 m, dt 1e-5 ... 1e-3 s) the estimate is 0.7 ms for a deformable 1 m square with
 // E = 1 GPa (the strain modes limit it; the contact allows ~3.8 ms), above every listed dt.
@@ -217,8 +223,9 @@ class Dda2d {
   const std::vector<ContactState>& contacts() const noexcept;  // at the current instant
   Energies energies() const;
   double critical_time_step() const noexcept;  // s; +infinity when nothing limits it
-  // What set critical_time_step(): "elastic stiffness of block 'A' ..." or "contact of block
-  // 'A' with block 'B' ..."; empty when nothing limits it.
+  // What set critical_time_step(): "block 'A': elastic stiffness (...)", "block 'A': contacts
+  // (...)" or "block 'A': elastic stiffness (...) plus its contacts (...)"; empty when nothing
+  // limits it.
   const std::string& critical_time_step_source() const noexcept;
   double max_penetration() const noexcept;     // largest minimum-translation distance seen, m
   kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
