@@ -64,7 +64,9 @@ void JsonReader::check_object(const json& value, const std::string& path, std::s
   if (!value.is_object()) fail_expected(path, expected, value);
   std::string names;
   for (const JsonField& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);
-  for (const auto& [key, item] : value.items()) {
+  for (const auto& member : value.items()) {
+    // A reference, not a structured binding: clang 14 cannot capture a binding in a lambda.
+    const std::string& key = member.key();
     const bool known = std::any_of(fields.begin(), fields.end(),
                                    [&](const JsonField& f) { return f.name == key; });
     if (!known) fail(json_child(path, key), "unknown field; expected only " + names);
