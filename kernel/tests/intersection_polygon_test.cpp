@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <cmath>
+
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
@@ -62,4 +64,38 @@ BOOST_AUTO_TEST_CASE(filtered_and_exact_agree_on_the_same_pair) {
   BOOST_TEST((filtered.edges == exact.edges));
   BOOST_TEST((rk::classify_overlap<rk::Exact>(sliver_cp, lattice_tp) == rk::Overlap::overlap));
   BOOST_TEST(exact.vertices.size() >= 3u);
+}
+
+// A crossing of nearly collinear edges whose two cross products both round to zero in double
+// (the pair campaign's rotated edge_on_edge case, robustness_tests: rotated seed
+// 104372539491857 index 12698): the parameter along the TP edge was 0 / 0, and the NaN passed
+// the clamp into the IP point and the force. Every constructed point must be finite and, as
+// the clamp promises, on its TP edge's bounding box.
+BOOST_AUTO_TEST_CASE(crossings_of_edges_parallel_within_rounding_are_finite) {
+  const ConvexPolygon cp = ConvexPolygon::make(
+      "cp", {{-1.6921099825647343, 1.6827693565318407},
+             {-1.6160887193340063, 0.99379916643229249},
+             {-1.0978762235104063, 0.36298628086594953},
+             {-0.34051933563739267, 1.2248404552113632},
+             {-1.228912442731608, 1.8744616191248014}});
+  const ConvexPolygon tp = ConvexPolygon::make(
+      "tp", {{-0.66247864327865014, 0.52546194347025166},
+             {-0.15118011366913919, 1.4403039987977166},
+             {-1.192545834494533, 0.25525450907277281}});
+  const IntersectionPolygon ip = rk::compute_intersection_polygon<rk::Filtered>(cp, tp);
+  BOOST_TEST_REQUIRE(ip.vertices.size() >= 3u);
+  std::vector<rk::Point2> points;
+  rk::construct_points<rk::Filtered>(cp, tp, ip, points);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    BOOST_TEST_CONTEXT("IP vertex " << k) {
+      BOOST_TEST(std::isfinite(points[k].x));
+      BOOST_TEST(std::isfinite(points[k].y));
+      if (ip.vertices[k].kind == IpVertex::Kind::crossing) {
+        const rk::Point2& a = tp[ip.vertices[k].tp];
+        const rk::Point2& b = tp[tp.next(ip.vertices[k].tp)];
+        BOOST_TEST((points[k].x >= std::fmin(a.x, b.x) && points[k].x <= std::fmax(a.x, b.x)));
+        BOOST_TEST((points[k].y >= std::fmin(a.y, b.y) && points[k].y <= std::fmax(a.y, b.y)));
+      }
+    }
+  }
 }

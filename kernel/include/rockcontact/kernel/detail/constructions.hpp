@@ -38,7 +38,10 @@ FT cross(const FT& ux, const FT& uy, const FT& vx, const FT& vy) {
 // implicit equation. In double s is clamped to [0, 1], which keeps the point on the segment
 // (the combinatorics already say it is there); the error of each coordinate is then a few
 // ulps of |X| plus |t1 - t0| times the relative error of s, which grows as the two lines
-// approach parallel (1 / sin of their angle). In mpq_class the point is exact.
+// approach parallel (1 / sin of their angle). When both cross products round to zero (lines
+// parallel to within rounding) s is 0 / 0: NaN fails every comparison, so the clamp is written
+// to send it to 0, the segment's start, as good as any point of it. In mpq_class the point is
+// exact.
 template <class FT>
 PointT<FT> construct_crossing(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
   using Ops = NumberOps<FT>;
@@ -46,7 +49,7 @@ PointT<FT> construct_crossing(const Point2& p, const Point2& q, const Point2& t0
   const FT dx = Ops::from(t1.x) - Ops::from(t0.x), dy = Ops::from(t1.y) - Ops::from(t0.y);
   const FT wx = Ops::from(p.x) - Ops::from(t0.x), wy = Ops::from(p.y) - Ops::from(t0.y);
   FT s = cross(lx, ly, wx, wy) / cross(lx, ly, dx, dy);
-  if constexpr (std::is_same_v<FT, double>) s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  if constexpr (std::is_same_v<FT, double>) s = s >= 0.0 ? (s > 1.0 ? 1.0 : s) : 0.0;
   return {Ops::from(t0.x) + s * dx, Ops::from(t0.y) + s * dy};
 }
 
