@@ -322,17 +322,24 @@ std::optional<PolygonPair> wedge_pair(Rng& rng, double half_tan) {
   return pair_if_valid(std::move(cp), std::move(tp));
 }
 
+// A random edge of `poly` at least 0.1 m long, else its longest: the edge a near-parallel
+// partner is laid against.
+std::size_t long_edge(Rng& rng, const Polygon& poly) {
+  const auto edge_length = [&](std::size_t i) { return length(poly[(i + 1) % poly.size()] - poly[i]); };
+  std::size_t k = rng.index(poly.size());
+  if (edge_length(k) < 0.1) {
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      if (edge_length(i) > edge_length(k)) k = i;
+    }
+  }
+  return k;
+}
+
 std::optional<PolygonPair> near_parallel_pair(Rng& rng) {
   Polygon cp = random_convex(rng, random_point(rng, 0.5), 10, 1.0);
   if (!valid(cp)) return std::nullopt;
-  std::size_t k = rng.index(cp.size());
-  const auto edge = [&](std::size_t i) { return cp[(i + 1) % cp.size()] - cp[i]; };
-  if (length(edge(k)) < 0.1) {
-    for (std::size_t i = 0; i < cp.size(); ++i) {
-      if (length(edge(i)) > length(edge(k))) k = i;
-    }
-  }
-  const Vector2 e = edge(k);
+  const std::size_t k = long_edge(rng, cp);
+  const Vector2 e = cp[(k + 1) % cp.size()] - cp[k];
   const Vector2 outward = right_normal(unit(e));
   // tp's edge P0 -> P1 runs against e, turned by ~angle; tp lies on its left, outside cp.
   const double angle_sign = rng.sign();
@@ -872,14 +879,8 @@ std::optional<PolygonPair> near_parallel_ulp_pair(Rng& rng) {
   const Point2 centre = random_point(rng, 0.5);
   Polygon cp = snapped_convex(rng, centre, incidence_grid);
   if (!valid(cp)) return std::nullopt;
-  std::size_t k = rng.index(cp.size());
-  const auto edge = [&](std::size_t i) { return cp[(i + 1) % cp.size()] - cp[i]; };
-  if (length(edge(k)) < 0.1) {
-    for (std::size_t i = 0; i < cp.size(); ++i) {
-      if (length(edge(i)) > length(edge(k))) k = i;
-    }
-    if (length(edge(k)) < 0.1) return std::nullopt;
-  }
+  const std::size_t k = long_edge(rng, cp);
+  if (length(cp[(k + 1) % cp.size()] - cp[k]) < 0.1) return std::nullopt;
   const Point2 a = cp[k], b = cp[(k + 1) % cp.size()];
   // The on-line point in the middle half of the edge.
   const int m = static_cast<int>(rng.integer(2, 20));
