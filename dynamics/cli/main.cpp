@@ -23,6 +23,7 @@
 #include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/dynamics/pairs_io.hpp"
 #include "rockcontact/dynamics/pairs_summary.hpp"
+#include "rockcontact/dynamics/report.hpp"
 #include "rockcontact/dynamics/scene.hpp"
 #include "rockcontact/dynamics/scene_output.hpp"
 #include "rockcontact/dynamics/validation.hpp"
@@ -247,6 +248,41 @@ void add_validate(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_validate(*options); });
 }
 
+struct ReportArgs {
+  bool quick = false;
+  std::string out;
+  std::string scenes = ROCKCONTACT_SCENES_DIR;
+};
+
+int run_report(const ReportArgs& options) {
+  dyn::ReportOptions report;
+  report.scenes_dir = options.scenes;
+  report.out_dir = options.out;
+  report.quick = options.quick;
+  if (stderr_is_terminal()) {
+    report.on_scene = [](const std::string& scene) { std::cerr << "sweeping " << scene << '\n'; };
+  }
+  const dyn::ReportSummary summary = dyn::run_report(report);
+  for (const std::string& line : summary.headlines) std::cout << line << '\n';
+  std::cout << summary.runs.size() << " runs in " << std::setprecision(3) << summary.seconds
+            << " s; " << options.out << "/index.md, runs.csv"
+            << (summary.plots ? " and the plots (PNG, SVG)" : "; plots missing (no gnuplot)")
+            << '\n';
+  return exit_ok;
+}
+
+void add_report(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<ReportArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "report", "Sweep dt, kn, policy and demarcation over the validated scenes: error vs run time");
+  sub->add_flag("--quick", options->quick, "Shorter sweep and durations (what the test suite runs)");
+  sub->add_option("-o,--out", options->out, "Output directory: index.md, runs.csv, plots")
+      ->required();
+  sub->add_option("--scenes", options->scenes, "Directory of the scene files")
+      ->capture_default_str();
+  sub->callback([options, &exit_status] { exit_status = run_report(*options); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -258,6 +294,7 @@ int main(int argc, char** argv) {
   add_run(app, exit_status);
   add_cut(app, exit_status);
   add_validate(app, exit_status);
+  add_report(app, exit_status);
   try {
     app.parse(argc, argv);
     return exit_status;
