@@ -12,7 +12,11 @@
 //   B/block      resident memory added by the engine (after the warm-up) per block;
 // then the exponent b of time per step ~ N^b, a least-squares fit over the N measured.
 //
-// Usage: dda_scale [--max N] [--steps S] [--warmup W] [--threads "1 2"]
+// With --settled N it measures instead a settled pile of N unit squares (settled_blocks): the
+// contacts per second per core of a scene whose contacts are all loaded, the figure a DEM user
+// compares with their own code.
+//
+// Usage: dda_scale [--max N] [--steps S] [--warmup W] [--threads "1 2"] [--settled N]
 // Measured figures are quoted in the README with the command that made them.
 
 #include <algorithm>
@@ -51,6 +55,7 @@ struct Options {
   std::size_t steps = 20;
   std::size_t warmup = 20;
   std::vector<std::size_t> threads{1, 2};
+  std::size_t settled = 0;  // blocks of the settled pile; 0: the scaling table
 };
 
 Options parse(int argc, char** argv) {
@@ -63,6 +68,8 @@ Options parse(int argc, char** argv) {
       o.steps = std::stoul(value);
     } else if (flag == "--warmup") {
       o.warmup = std::stoul(value);
+    } else if (flag == "--settled") {
+      o.settled = std::stoul(value);
     } else if (flag == "--threads") {
       o.threads.clear();
       std::istringstream list(value);
@@ -80,14 +87,14 @@ struct Measure {
   double cut = 0.0, setup = 0.0, per_step = 0.0, contact_rate = 0.0, bytes_per_block = 0.0;
 };
 
-std::vector<dynamics::BlockSpec> settling_blocks(std::size_t n, double& cut_seconds) {
+std::vector<dynamics::BlockSpec> settling_blocks(std::size_t n, const dynamics::Material& rock,
+                                                 double& cut_seconds) {
   const double side = std::round(std::sqrt(static_cast<double>(n)));
   const std::vector<kernel::Point2> region{{0, 0}, {side, 0}, {side, side}, {0, side}};
   const std::vector<kernel::JointSet> sets{{0.0, 1.0}, {90.0, 1.0}};
   const auto start = clock_type::now();
   const std::vector<std::vector<kernel::Point2>> pieces = kernel::cut_region(region, sets);
   cut_seconds = seconds_since(start);
-  dynamics::Material rock{2700.0, 2.0e9, 0.3};
   std::vector<dynamics::BlockSpec> blocks;
   dynamics::BlockSpec floor;
   floor.id = "floor";
@@ -105,10 +112,49 @@ std::vector<dynamics::BlockSpec> settling_blocks(std::size_t n, double& cut_seco
   return blocks;
 }
 
-Measure run(std::size_t n, std::size_t threads, const Options& o) {
+// Rigid unit squares stacked in sqrt(N) columns on the fixed floor, each already at its static
+// overlap with what is below it, so that every vertical pair is a loaded contact from the first
+// step and every side pair an exact touch: a settled pile without the cost of settling one. A block
+// carrying the weight W of its column above it (itself included) overlaps by d where the
+// face-on-face force of the potential law (seed 000 eq. 12-14, the shortest exit) balances W:
+// against an equal face 2 kn/H (L d - d²) = W, against the wider floor kn/H (2 L d - d²) = W.
+std::vector<dynamics::BlockSpec> settled_blocks(std::size_t n, const dynamics::Material& rock,
+                                                double kn, double H, double g) {
+  const auto side = static_cast<std::size_t>(std::round(std::sqrt(static_cast<double>(n))));
+  const double L = 1.0, weight = rock.density * L * L * g;
+  std::vector<dynamics::BlockSpec> blocks;
+  dynamics::BlockSpec floor;
+  floor.id = "floor";
+  floor.fixed = true;
+  floor.material = rock;
+  const double width = static_cast<double>(side);
+  floor.vertices = {{-1, -1}, {width + 1, -1}, {width + 1, 0}, {-1, 0}};
+  blocks.push_back(floor);
+  for (std::size_t j = 0; j < side; ++j) {
+    double top = 0.0;  // of the block below (the floor's top at first)
+    for (std::size_t i = 0; i < side; ++i) {
+      const double w = static_cast<double>(side - i) * weight;
+      const double d = i == 0 ? L - std::sqrt(L * L - w * H / kn)
+                              : 0.5 * (L - std::sqrt(L * L - 2.0 * w * H / kn));
+      const double x = static_cast<double>(j), y = top - d;
+      dynamics::BlockSpec b;
+      b.id = "b" + std::to_string(j) + "_" + std::to_string(i);
+      b.material = rock;
+      b.vertices = {{x, y}, {x + L, y}, {x + L, y + L}, {x, y + L}};
+      b.rigid = true;  // deformable blocks would first sink by their elastic strain and bounce
+      blocks.push_back(std::move(b));
+      top = y + L;
+    }
+  }
+  return blocks;
+}
+
+Measure run(std::size_t n, std::size_t threads, const Options& o, bool settled) {
   Measure m;
   m.threads = threads;
-  const std::vector<dynamics::BlockSpec> blocks = settling_blocks(n, m.cut);
+  const dynamics::Material rock{2700.0, 2.0e9, 0.3};
+  const std::vector<dynamics::BlockSpec> blocks =
+      settled ? settled_blocks(n, rock, 2.0e9, 1.0, 9.81) : settling_blocks(n, rock, m.cut);
   m.blocks = blocks.size() - 1;
   dynamics::ContactLaw law;
   law.normal.kn = 2.0e9;
@@ -151,12 +197,23 @@ double exponent(const std::vector<Measure>& rows, std::size_t threads) {
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
+  if (o.settled > 0) {
+    std::printf("%8s %7s %9s %9s %13s %16s\n", "blocks", "threads", "steps/s", "contacts",
+                "contacts/s", "contacts/s/core");
+    for (const std::size_t t : o.threads) {
+      const Measure m = run(o.settled, t, o, true);
+      std::printf("%8zu %7zu %9.1f %9zu %13.3g %16.3g\n", m.blocks, m.threads, 1.0 / m.per_step,
+                  m.contacts, m.contact_rate, m.contact_rate / static_cast<double>(t));
+      std::fflush(stdout);
+    }
+    return 0;
+  }
   std::vector<Measure> rows;
   std::printf("%8s %7s %7s %8s %9s %9s %9s %13s %9s\n", "blocks", "threads", "cut s", "setup s",
               "steps/s", "ms/step", "contacts", "contacts/s", "B/block");
   for (std::size_t n = 100; n <= o.max_blocks; n *= 10) {
     for (const std::size_t t : o.threads) {
-      const Measure m = run(n, t, o);
+      const Measure m = run(n, t, o, false);
       rows.push_back(m);
       std::printf("%8zu %7zu %7.3f %8.3f %9.1f %9.3f %9zu %13.3g %9.0f\n", m.blocks, m.threads, m.cut,
                   m.setup, 1.0 / m.per_step, 1e3 * m.per_step, m.contacts, m.contact_rate,
