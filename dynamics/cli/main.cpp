@@ -207,13 +207,20 @@ void add_cut(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_cut(*options); });
 }
 
-struct ValidateArgs {
+// Options of the commands that go over the directory of paper scenes (validate, report).
+struct SceneSetArgs {
   bool quick = false;
   std::string out;
   std::string scenes = ROCKCONTACT_SCENES_DIR;
 };
 
-int run_validate(const ValidateArgs& options) {
+void add_scene_set_options(CLI::App* sub, SceneSetArgs& options) {
+  sub->add_flag("--quick", options.quick, "Shortened durations (what the test suite runs)");
+  sub->add_option("--scenes", options.scenes, "Directory of the scene files")
+      ->capture_default_str();
+}
+
+int run_validate(const SceneSetArgs& options) {
   dyn::ValidationOptions validation;
   validation.scenes_dir = options.scenes;
   validation.quick = options.quick;
@@ -238,23 +245,15 @@ int run_validate(const ValidateArgs& options) {
 }
 
 void add_validate(CLI::App& app, int& exit_status) {
-  auto options = std::make_shared<ValidateArgs>();
+  auto options = std::make_shared<SceneSetArgs>();
   CLI::App* sub = app.add_subcommand(
       "validate", "Run the paper's scenes and compare each with its reference (exit 3 on a FAIL)");
-  sub->add_flag("--quick", options->quick, "Shortened durations (what the test suite runs)");
+  add_scene_set_options(sub, *options);
   sub->add_option("-o,--out", options->out, "Write each run's outputs into DIR/<scene>/");
-  sub->add_option("--scenes", options->scenes, "Directory of the scene files")
-      ->capture_default_str();
   sub->callback([options, &exit_status] { exit_status = run_validate(*options); });
 }
 
-struct ReportArgs {
-  bool quick = false;
-  std::string out;
-  std::string scenes = ROCKCONTACT_SCENES_DIR;
-};
-
-int run_report(const ReportArgs& options) {
+int run_report(const SceneSetArgs& options) {
   dyn::ReportOptions report;
   report.scenes_dir = options.scenes;
   report.out_dir = options.out;
@@ -272,14 +271,12 @@ int run_report(const ReportArgs& options) {
 }
 
 void add_report(CLI::App& app, int& exit_status) {
-  auto options = std::make_shared<ReportArgs>();
+  auto options = std::make_shared<SceneSetArgs>();
   CLI::App* sub = app.add_subcommand(
       "report", "Sweep dt, kn, policy and demarcation over the validated scenes: error vs run time");
-  sub->add_flag("--quick", options->quick, "Shorter sweep and durations (what the test suite runs)");
+  add_scene_set_options(sub, *options);
   sub->add_option("-o,--out", options->out, "Output directory: index.md, runs.csv, plots")
       ->required();
-  sub->add_option("--scenes", options->scenes, "Directory of the scene files")
-      ->capture_default_str();
   sub->callback([options, &exit_status] { exit_status = run_report(*options); });
 }
 
