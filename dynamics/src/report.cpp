@@ -18,6 +18,7 @@
 #include "rockcontact/dynamics/atomic_file.hpp"
 #include "rockcontact/dynamics/scene.hpp"
 #include "rockcontact/dynamics/scene_output.hpp"
+#include "rockcontact/dynamics/validation.hpp"
 
 extern char** environ;
 
@@ -110,13 +111,8 @@ Probe incline_slide(const Scene& scene) {
             track->time = sim.time();
           },
           [=] {
-            const double t = track->time;
-            const double a =
-                g * (std::sin(incline_theta) - std::cos(incline_theta) * std::tan(phi));
-            const double l = 0.5 * a * t * t;
-            // Down the slope: the incline rises to the right, so down is -(cos θ, sin θ).
-            const double slide = -((track->end.x - track->start.x) * std::cos(incline_theta) +
-                                   (track->end.y - track->start.y) * std::sin(incline_theta));
+            const double l = incline_slide_eq30(g, incline_theta, phi, track->time);
+            const double slide = slide_down_slope(track->start, track->end, incline_theta);
             return std::abs(slide - l) / l;
           }};
 }

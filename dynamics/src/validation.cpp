@@ -259,7 +259,7 @@ InclineReferences incline_references(double g, double theta, double phi, double 
                                      double t) {
   const double a = g * (std::sin(theta) - std::cos(theta) * std::tan(phi));
   InclineReferences refs;
-  refs.rigid = 0.5 * a * t * t;
+  refs.rigid = incline_slide_eq30(g, theta, phi, t);
   const double r = std::tan(phi) / std::tan(theta);
   if (r == 0.0) {
     refs.elastic_plastic = refs.rigid;
@@ -299,9 +299,7 @@ void incline(const Validator& v, std::vector<ValidationRow>& rows, int phi_deg) 
   }
   const double t = run.report.time;
   const InclineReferences refs = incline_references(g, theta, phi, kt, mass, t);
-  // Down the slope: the incline rises to the right, so down is -(cos θ, sin θ).
-  const double measured =
-      -((end.x - start.x) * std::cos(theta) + (end.y - start.y) * std::sin(theta));
+  const double measured = slide_down_slope(start, end, theta);
   const std::string at = " m at t = " + format(t) + " s";
   rows.push_back(judged(name, rigid, format(refs.rigid) + at, format(measured, 6) + " m",
                         std::abs(measured - refs.rigid) / refs.rigid, Bound::at_most, 0.01,
@@ -617,6 +615,14 @@ void toppling_slumping(const Validator& v, std::vector<ValidationRow>& rows) {
 }
 
 }  // namespace
+
+double incline_slide_eq30(double g, double theta, double phi, double t) {
+  return 0.5 * g * (std::sin(theta) - std::cos(theta) * std::tan(phi)) * t * t;
+}
+
+double slide_down_slope(kernel::Point2 start, kernel::Point2 end, double theta) {
+  return -((end.x - start.x) * std::cos(theta) + (end.y - start.y) * std::sin(theta));
+}
 
 std::vector<ValidationRow> run_validation(const ValidationOptions& options) {
   const Validator v(options);

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "rockcontact/kernel/point.hpp"
+
 namespace rockcontact::dynamics {
 
 // How a measured error is judged against the tolerance.
@@ -48,6 +50,15 @@ struct ValidationOptions {
   // Called with each scene's name before its runs start (progress on a terminal).
   std::function<void(const std::string&)> on_scene;
 };
+
+// The §4.3 reference, also used by `rockcontact report`: seed 000 eq. 30, the distance a rigid
+// block slides from rest in time t (s) down a slope θ with friction angle φ (rad) under gravity
+// g (m/s²), l = ½ g (sin θ − cos θ tan φ) t² (m).
+double incline_slide_eq30(double g, double theta, double phi, double t);
+
+// The displacement from `start` to `end` (m) measured down a slope that rises to the right at
+// angle θ (rad), i.e. along -(cos θ, sin θ).
+double slide_down_slope(kernel::Point2 start, kernel::Point2 end, double theta);
 
 // Runs every scene and returns its rows, scene by scene. Throws InputError when a scene file
 // is missing or malformed, OutputError when out_dir cannot be written.
