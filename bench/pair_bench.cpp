@@ -34,8 +34,11 @@
 #include "rockcontact/kernel/intersection_polygon.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 #include "rockcontact/kernel/predicate_stats.hpp"
+#include "run_passes.hpp"
 
 namespace {
+
+using rockcontact::bench::run_passes;
 
 namespace rb = rockcontact::robustness;
 namespace rk = rockcontact::kernel;
@@ -72,27 +75,9 @@ Pool make_pool(std::string name, PoolKind kind) {
   return pool;
 }
 
-// Times `one_pair(i)` over the whole pool per iteration, after one untimed warm-up pass.
-template <class OnePair>
-void run_passes(benchmark::State& state, OnePair&& one_pair) {
-  for (std::size_t i = 0; i < pool_size; ++i) one_pair(i);
-  const rk::PredicateCounters before = rk::predicate_counters();
-  for (auto _ : state) {
-    for (std::size_t i = 0; i < pool_size; ++i) one_pair(i);
-    benchmark::ClobberMemory();
-  }
-  const rk::PredicateCounters spent = rk::predicate_counters() - before;
-  const double pairs = static_cast<double>(state.iterations()) * static_cast<double>(pool_size);
-  const double calls = static_cast<double>(spent.total_calls());
-  state.counters["per_pair"] =
-      benchmark::Counter(pairs, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["fallback_rate"] = calls > 0 ? static_cast<double>(spent.total_fallbacks()) / calls : 0.0;
-  state.counters["predicates"] = calls / pairs;
-}
-
 template <rk::NumberPolicy Policy>
 void classify(benchmark::State& state, const Pool& pool) {
-  run_passes(state, [&](std::size_t i) {
+  run_passes(state, pool_size, [&](std::size_t i) {
     benchmark::DoNotOptimize(rk::classify_overlap<Policy>(pool.cp[i], pool.tp[i]));
   });
 }
@@ -102,7 +87,7 @@ void intersection(benchmark::State& state, const Pool& pool) {
   rk::IntersectionPolygon ip;
   rk::ClipWorkspace workspace;
   std::vector<rk::Point2> points;
-  run_passes(state, [&](std::size_t i) {
+  run_passes(state, pool_size, [&](std::size_t i) {
     rk::compute_intersection_polygon<Policy>(pool.cp[i], pool.tp[i], ip, workspace);
     rk::construct_points<Policy>(pool.cp[i], pool.tp[i], ip, points);
     benchmark::DoNotOptimize(points.data());
@@ -114,7 +99,7 @@ void evaluate(benchmark::State& state, const Pool& pool) {
   const rc::PotentialContactParams params = rc::default_potential_contact_params();
   rc::PairWorkspace workspace;
   rc::PairResult result;
-  run_passes(state, [&](std::size_t i) {
+  run_passes(state, pool_size, [&](std::size_t i) {
     rc::evaluate_pair<Policy>(pool.cp[i], pool.tp[i], params, workspace, result);
     benchmark::DoNotOptimize(result.force);
   });

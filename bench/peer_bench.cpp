@@ -59,9 +59,11 @@
 #include "rockcontact/kernel/intersection_polygon.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 #include "rockcontact/kernel/point.hpp"
-#include "rockcontact/kernel/predicate_stats.hpp"
+#include "run_passes.hpp"
 
 namespace {
+
+using rockcontact::bench::run_passes;
 
 namespace rk = rockcontact::kernel;
 namespace rc = rockcontact::contact;
@@ -189,24 +191,6 @@ void naive_clip(std::span<const rk::Point2> clip, std::span<const rk::Point2> su
     }
     std::swap(out, scratch);
   }
-}
-
-// Times `one_pair(i)` over the pool's first `count` pairs per iteration, after one untimed
-// warm-up pass that also grows every workspace.
-template <class OnePair>
-void run_passes(benchmark::State& state, std::size_t count, OnePair&& one_pair) {
-  for (std::size_t i = 0; i < count; ++i) one_pair(i);
-  const rk::PredicateCounters before = rk::predicate_counters();
-  for (auto _ : state) {
-    for (std::size_t i = 0; i < count; ++i) one_pair(i);
-    benchmark::ClobberMemory();
-  }
-  const rk::PredicateCounters spent = rk::predicate_counters() - before;
-  const double pairs = static_cast<double>(state.iterations()) * static_cast<double>(count);
-  const double calls = static_cast<double>(spent.total_calls());
-  state.counters["per_pair"] =
-      benchmark::Counter(pairs, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["fallback_rate"] = calls > 0 ? static_cast<double>(spent.total_fallbacks()) / calls : 0.0;
 }
 
 template <rk::NumberPolicy Policy>
