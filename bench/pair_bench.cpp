@@ -33,7 +33,6 @@
 #include "rockcontact/kernel/entrance_block.hpp"
 #include "rockcontact/kernel/intersection_polygon.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
-#include "rockcontact/kernel/predicate_stats.hpp"
 #include "run_passes.hpp"
 
 namespace {
