@@ -116,33 +116,19 @@ std::optional<HRule> parse_h_rule(std::string_view text) {
 
 using Materials = std::map<std::string, Material, std::less<>>;
 
-// Where in the scene a kernel::cut_region refusal belongs. The kernel's messages start with
-// what they refuse, in its own words: "region: ..." (the outline), "joint_sets[i].FIELD: ..."
-// (with FIELD "trace_length" for the scene's "length"), "min_block_area: ..."; anything else
-// (a generated block "block near (x, y): ...") is the region's as a whole. Returns the JSON
-// path and the message without its prefix, so the error reads "<file>: region.vertices:
-// vertices are clockwise ..." rather than naming the region twice.
-std::pair<std::string, std::string> cut_error_at(const std::string& region_path,
-                                                 const std::string& message) {
-  const auto strip = [&](std::string_view prefix) {
-    return message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size())
-                                                          : std::string();
-  };
-  if (std::string rest = strip("region: "); !rest.empty()) {
-    return {json_child(region_path, "vertices"), rest};
+// Where in the scene a kernel::cut_region refusal belongs: its subject in the kernel's terms
+// ("region", "joint_sets[i].FIELD" with "trace_length" for the scene's "length",
+// "min_block_area", "block near (x, y)") mapped onto the JSON path, so the error reads
+// "<file>: region.vertices: vertices are clockwise ..." rather than naming the region twice.
+std::string cut_error_path(const std::string& region_path, const kernel::InvalidCut& e) {
+  const std::string& subject = e.subject();
+  if (subject == "region") return json_child(region_path, "vertices");
+  if (subject == "min_block_area") return json_child(region_path, "min_block_area");
+  if (subject.rfind("joint_sets[", 0) == 0) {
+    const std::size_t at = subject.find(".trace_length");
+    return at == std::string::npos ? subject : subject.substr(0, at) + ".length";
   }
-  if (std::string rest = strip("min_block_area: "); !rest.empty()) {
-    return {json_child(region_path, "min_block_area"), rest};
-  }
-  if (message.compare(0, 11, "joint_sets[") == 0) {
-    const std::size_t colon = message.find(": ");
-    std::string field = message.substr(0, colon);
-    if (const std::size_t at = field.find(".trace_length"); at != std::string::npos) {
-      field.replace(at, 13, ".length");
-    }
-    if (colon != std::string::npos) return {field, message.substr(colon + 2)};
-  }
-  return {region_path, message};
+  return region_path;  // a block the cut would make
 }
 
 
@@ -290,8 +276,8 @@ class SceneParser {
     try {
       pieces = kernel::cut_region(outline, sets, options);
     } catch (const kernel::InvalidCut& e) {
-      const auto [field, problem] = cut_error_at(path, e.what());
-      reader_.fail(field, problem);
+      const std::string field = cut_error_path(path, e);
+      reader_.fail(field, field == path ? std::string(e.what()) : e.problem());
     }
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       BlockSpec spec;

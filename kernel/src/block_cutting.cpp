@@ -40,7 +40,9 @@ using Polygon = std::vector<Point2>;
 // ---------------------------------------------------------------------------------------------
 // Messages and conversions
 
-[[noreturn]] void fail(const std::string& message) { throw InvalidCut(message); }
+[[noreturn]] void fail(const std::string& subject, const std::string& problem) {
+  throw InvalidCut(subject, problem);
+}
 
 // Shortest decimal form that reads back as the same double ("-1", "0.1", "nan").
 std::string num(double v) {
@@ -121,42 +123,42 @@ std::string why_not_simple(const std::vector<ExactPoint>& v) {
 
 // Checks a polygon argument (`name` is "region" or "polygon") and returns it exactly.
 std::vector<ExactPoint> validate_polygon(const std::string& name, std::span<const Point2> v) {
-  if (v.size() < 3) fail(name + ": needs at least 3 vertices, got " + std::to_string(v.size()));
+  if (v.size() < 3) fail(name, "needs at least 3 vertices, got " + std::to_string(v.size()));
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y)) {
-      fail(name + ": vertex " + std::to_string(i) + ": coordinates must be finite, got (" +
+      fail(name, "vertex " + std::to_string(i) + ": coordinates must be finite, got (" +
            num(v[i].x) + ", " + num(v[i].y) + ")");
     }
   }
   std::vector<ExactPoint> exact = to_exact(v);
   if (!CGAL::is_simple_2(exact.begin(), exact.end(), K())) {
-    fail(name + ": " + why_not_simple(exact) + " (a simple polygon is required)");
+    fail(name, why_not_simple(exact) + " (a simple polygon is required)");
   }
   const CGAL::Orientation orientation = CGAL::orientation_2(exact.begin(), exact.end(), K());
   if (orientation == CGAL::CLOCKWISE) {
-    fail(name + ": vertices are clockwise; counter-clockwise order is required");
+    fail(name, "vertices are clockwise; counter-clockwise order is required");
   }
-  if (orientation != CGAL::COUNTERCLOCKWISE) fail(name + ": the polygon has zero area");
+  if (orientation != CGAL::COUNTERCLOCKWISE) fail(name, "the polygon has zero area");
   return exact;
 }
 
 void validate_set(std::size_t i, const JointSet& set) {
   const std::string field = "joint_sets[" + std::to_string(i) + "].";
   if (!(set.dip_deg >= 0.0 && set.dip_deg < 180.0)) {
-    fail(field + "dip_deg: expected a value in [0, 180), got " + num(set.dip_deg));
+    fail(field + "dip_deg", "expected a value in [0, 180), got " + num(set.dip_deg));
   }
   if (!(std::isfinite(set.spacing) && set.spacing > 0.0)) {
-    fail(field + "spacing: expected a finite value > 0, got " + num(set.spacing));
+    fail(field + "spacing", "expected a finite value > 0, got " + num(set.spacing));
   }
-  if (!std::isfinite(set.offset)) fail(field + "offset: expected a finite value, got " + num(set.offset));
+  if (!std::isfinite(set.offset)) fail(field + "offset", "expected a finite value, got " + num(set.offset));
   if (!(std::isfinite(set.trace_length) && set.trace_length >= 0.0)) {
-    fail(field + "trace_length: expected a finite value >= 0, got " + num(set.trace_length));
+    fail(field + "trace_length", "expected a finite value >= 0, got " + num(set.trace_length));
   }
   if (!(std::isfinite(set.gap) && set.gap >= 0.0)) {
-    fail(field + "gap: expected a finite value >= 0, got " + num(set.gap));
+    fail(field + "gap", "expected a finite value >= 0, got " + num(set.gap));
   }
   if (set.trace_length == 0.0 && set.gap != 0.0) {
-    fail(field + "gap: expected 0 for persistent traces (trace_length 0), got " + num(set.gap) +
+    fail(field + "gap", "expected 0 for persistent traces (trace_length 0), got " + num(set.gap) +
          "; set trace_length > 0 for non-persistent traces");
   }
 }
@@ -195,7 +197,7 @@ Disc disc_around(std::span<const Point2> region) {
     y1 = std::max(y1, p.y);
   }
   const Disc disc{0.5 * x0 + 0.5 * x1, 0.5 * y0 + 0.5 * y1, 1.0625 * 0.5 * std::hypot(x1 - x0, y1 - y0)};
-  if (!std::isfinite(disc.radius)) fail("region: coordinates span more than the double range");
+  if (!std::isfinite(disc.radius)) fail("region", "coordinates span more than the double range");
   return disc;
 }
 
@@ -225,11 +227,11 @@ TracePlan plan_set(std::size_t i, const JointSet& set, std::span<const Point2> r
   const double k_lo = std::ceil((p_lo - set.offset) / set.spacing) - 1.0;
   const double k_hi = std::floor((p_hi - set.offset) / set.spacing) + 1.0;
   if (!(k_hi - k_lo < static_cast<double>(max_cut_trace_lines))) {
-    fail(field + "spacing: " + num(set.spacing) + " gives about " + num(k_hi - k_lo) +
+    fail(field + "spacing", num(set.spacing) + " gives about " + num(k_hi - k_lo) +
          " trace lines across the region (at most " + std::to_string(max_cut_trace_lines) + " in all)");
   }
   if (!index_range_ok(k_lo, k_hi)) {
-    fail(field + "offset: " + num(set.offset) + " is more than 2^52 spacings away from the region");
+    fail(field + "offset", num(set.offset) + " is more than 2^52 spacings away from the region");
   }
   plan.k_first = static_cast<std::int64_t>(k_lo);
   plan.k_last = static_cast<std::int64_t>(k_hi);
@@ -241,12 +243,12 @@ TracePlan plan_set(std::size_t i, const JointSet& set, std::span<const Point2> r
   const double j_lo = std::ceil((plan.s_lo - set.trace_length) / period);
   const double j_hi = std::floor(plan.s_hi / period);
   if (!(j_hi - j_lo < static_cast<double>(max_cut_trace_pieces))) {
-    fail(field + "trace_length: traces of " + num(set.trace_length) + " m with gaps of " +
+    fail(field + "trace_length", "traces of " + num(set.trace_length) + " m with gaps of " +
          num(set.gap) + " m give about " + num(j_hi - j_lo) + " traces per line (at most " +
          std::to_string(max_cut_trace_pieces) + " in all)");
   }
   if (!index_range_ok(j_lo, j_hi)) {
-    fail(field + "trace_length: traces of " + num(set.trace_length) + " m with gaps of " + num(set.gap) +
+    fail(field + "trace_length", "traces of " + num(set.trace_length) + " m with gaps of " + num(set.gap) +
          " m are numbered beyond 2^52 along the lines near the region");
   }
   plan.j_first = static_cast<std::int64_t>(j_lo);
@@ -262,18 +264,18 @@ void check_work(std::span<const JointSet> sets, const std::vector<TracePlan>& pl
     lines += plans[i].lines();
     pieces += plans[i].pieces();
     if (lines > static_cast<double>(max_cut_trace_lines)) {
-      fail(field + ": the sets up to this one give " + num(lines) + " trace lines across the region (at most " +
+      fail(field, "the sets up to this one give " + num(lines) + " trace lines across the region (at most " +
            std::to_string(max_cut_trace_lines) + ")");
     }
     if (pieces > static_cast<double>(max_cut_trace_pieces)) {
-      fail(field + ": the sets up to this one give " + num(pieces) + " traces near the region (at most " +
+      fail(field, "the sets up to this one give " + num(pieces) + " traces near the region (at most " +
            std::to_string(max_cut_trace_pieces) + ")");
     }
     for (std::size_t j = 0; j < i; ++j) {
       if (sets[j].dip_deg != sets[i].dip_deg) crossings += plans[i].lines() * plans[j].lines();
     }
     if (crossings > max_cut_trace_crossings) {
-      fail(field + ": the sets up to this one can cross up to " + num(crossings) +
+      fail(field, "the sets up to this one can cross up to " + num(crossings) +
            " times in the region (at most " + num(max_cut_trace_crossings) + ")");
     }
   }
@@ -590,14 +592,14 @@ std::vector<ExactPoint> face_boundary(Arrangement::Face_const_handle face) {
   } while (++halfedge != first);
   if (face->number_of_inner_ccbs() > 0) {
     const ExactPoint& on_loop = (*face->inner_ccbs_begin())->source()->point();
-    fail(near(points.front()) + ": a closed loop of traces through (" + num(CGAL::to_double(on_loop.x())) +
+    fail(near(points.front()), "a closed loop of traces through (" + num(CGAL::to_double(on_loop.x())) +
          ", " + num(CGAL::to_double(on_loop.y())) + ") lies strictly inside it, so the block has a hole "
          "and is not a simple polygon; lengthen or move the traces so that the loop touches another "
          "trace or the region boundary");
   }
   std::sort(vertices.begin(), vertices.end());
   if (std::adjacent_find(vertices.begin(), vertices.end()) != vertices.end()) {
-    fail(near(points.front()) + ": its boundary touches itself at a vertex (traces meet the rest "
+    fail(near(points.front()), "its boundary touches itself at a vertex (traces meet the rest "
          "of the boundary in a single point), so the block is not a simple polygon");
   }
   return drop_collinear(points);
@@ -622,7 +624,7 @@ std::vector<Polygon> collect_blocks(const Arrangement& arrangement) {
     const std::vector<ExactPoint> exact = face_boundary(face);
     Polygon block = to_doubles(exact);
     if (!valid_after_rounding(block)) {
-      fail(near(exact.front()) + ": its vertices no longer form a valid polygon once rounded to "
+      fail(near(exact.front()), "its vertices no longer form a valid polygon once rounded to "
            "double (a sliver thinner than the rounding); move the traces or the region apart");
     }
     blocks.push_back(std::move(block));
@@ -656,7 +658,7 @@ std::vector<std::vector<Point2>> cut_region(std::span<const Point2> region, std:
   const std::vector<ExactPoint> boundary = validate_polygon("region", region);
   for (std::size_t i = 0; i < sets.size(); ++i) validate_set(i, sets[i]);
   if (!(std::isfinite(options.min_block_area) && options.min_block_area >= 0.0)) {
-    fail("min_block_area: expected a finite value >= 0, got " + num(options.min_block_area));
+    fail("min_block_area", "expected a finite value >= 0, got " + num(options.min_block_area));
   }
   const std::vector<Segment> traces = make_traces(region, sets);
   Arrangement arrangement;

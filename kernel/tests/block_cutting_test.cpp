@@ -627,3 +627,23 @@ BOOST_AUTO_TEST_CASE(merge_bad_option_names_the_field) {
   expect_invalid("min_block_area NaN", cut(std::nan("")), {"min_block_area", "got nan"});
   expect_invalid("min_block_area inf", cut(std::numeric_limits<double>::infinity()), {"min_block_area", "got inf"});
 }
+
+// The refused field travels as subject(), apart from the problem, so callers (the scene reader)
+// can report it at their own path: what() is exactly "<subject>: <problem>".
+BOOST_AUTO_TEST_CASE(invalid_cut_names_its_subject_apart_from_the_problem) {
+  const Polygon square{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
+  const auto subject_of = [](const std::function<void()>& call) -> std::string {
+    try {
+      call();
+    } catch (const rk::InvalidCut& e) {
+      BOOST_TEST(std::string(e.what()) == e.subject() + ": " + e.problem());
+      return e.subject();
+    }
+    return "nothing thrown";
+  };
+  BOOST_TEST(subject_of([&] { rk::cut_region(square, std::vector<JointSet>{{10.0, 1.0}, {20.0, -1.0}}); }) ==
+             "joint_sets[1].spacing");
+  const Polygon clockwise{{0, 0}, {0, 4}, {4, 4}, {4, 0}};
+  BOOST_TEST(subject_of([&] { rk::cut_region(clockwise, {}); }) == "region");
+  BOOST_TEST(subject_of([&] { rk::cut_region(square, {}, rk::CutOptions{-1.0}); }) == "min_block_area");
+}

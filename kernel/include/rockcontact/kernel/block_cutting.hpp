@@ -75,6 +75,7 @@
 #include <cstddef>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rockcontact/kernel/point.hpp"
@@ -95,12 +96,20 @@ struct JointSet {
                               // for every integer j
 };
 
-// Bad input to cut_region or convex_partition; the message names the field or the block:
-// "region: vertex 3: ...", "joint_sets[1].spacing: expected > 0, got -1",
-// "block near (2.5, 7.5): ...".
+// Bad input to cut_region or convex_partition. subject() names what is refused, in this
+// header's terms: "region" or "polygon" (the outline), "joint_sets[1].spacing" (a field of a
+// set, "joint_sets[1]" for the work bounds), "min_block_area", or "block near (2.5, 7.5)" (a
+// block the cut would make); problem() says why; what() is "<subject>: <problem>".
 class InvalidCut : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  InvalidCut(const std::string& subject, const std::string& problem)
+      : std::invalid_argument(subject + ": " + problem), subject_(subject), problem_(problem) {}
+  const std::string& subject() const noexcept { return subject_; }
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string subject_;
+  std::string problem_;
 };
 
 // Work bounds of cut_region (step 1), so absurd input fails fast instead of exhausting memory.
