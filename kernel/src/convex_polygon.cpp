@@ -57,6 +57,38 @@ void check_distinct(const std::string& name, std::span<const Point2> v) {
   }
 }
 
+// For a polygon whose turns are all left: it is convex only if its edge directions wind once,
+// i.e. the direction leaves the upper half-circle exactly once (a pentagram leaves it twice).
+// Returns the vertex where it leaves a second time, or -1.
+std::ptrdiff_t second_wrap_vertex(std::span<const Point2> v) {
+  const std::size_t n = v.size();
+  int wraps = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool here = upper_half(v[i], v[(i + 1) % n]);
+    const bool next = upper_half(v[(i + 1) % n], v[(i + 2) % n]);
+    if (here && !next && ++wraps == 2) return static_cast<std::ptrdiff_t>((i + 1) % n);
+  }
+  return -1;
+}
+
+// make()'s checks in one pass without storage, for the common case: at least 3 finite
+// vertices, every turn strictly left, winding once. Distinct vertices follow: a repeated
+// neighbour makes a zero turn, and a closed polygon that turns left everywhere and winds once
+// is simple.
+bool is_valid_ccw(std::span<const Point2> v) {
+  const std::size_t n = v.size();
+  if (n < 3) return false;
+  for (const Point2& p : v) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (orientation<Filtered>(v[i == 0 ? n - 1 : i - 1], v[i], v[(i + 1) % n]) != Sign::positive) {
+      return false;
+    }
+  }
+  return second_wrap_vertex(v) < 0;
+}
+
 }  // namespace
 
 ConvexPolygon ConvexPolygon::make(std::string name, std::vector<Point2> vertices, VertexOrder order) {
@@ -96,15 +128,7 @@ ConvexPolygon ConvexPolygon::make(std::string name, std::vector<Point2> vertices
          "turns the other way from its neighbours (the polygon is not convex)");
   }
 
-  // All turns are left; the polygon is convex only if its edge directions wind once, i.e. the
-  // direction leaves the upper half-circle exactly once (a pentagram leaves it twice).
-  std::ptrdiff_t second_wrap = -1;
-  int wraps = 0;
-  for (std::size_t i = 0; i < n && second_wrap < 0; ++i) {
-    const bool here = upper_half(vertices[i], vertices[(i + 1) % n]);
-    const bool next = upper_half(vertices[(i + 1) % n], vertices[(i + 2) % n]);
-    if (here && !next && ++wraps == 2) second_wrap = static_cast<std::ptrdiff_t>((i + 1) % n);
-  }
+  const std::ptrdiff_t second_wrap = second_wrap_vertex(vertices);
   if (second_wrap >= 0) {
     const std::ptrdiff_t reported =
         reversed ? static_cast<std::ptrdiff_t>(n) - 1 - second_wrap : second_wrap;
@@ -112,6 +136,15 @@ ConvexPolygon ConvexPolygon::make(std::string name, std::vector<Point2> vertices
          "the boundary winds more than once around the interior (self-intersecting polygon)");
   }
   return ConvexPolygon(std::move(name), std::move(vertices), reversed);
+}
+
+void ConvexPolygon::assign(std::span<const Point2> vertices, VertexOrder order) {
+  if (is_valid_ccw(vertices)) {
+    vertices_.assign(vertices.begin(), vertices.end());
+    reversed_ = false;
+    return;
+  }
+  *this = make(name_, std::vector<Point2>(vertices.begin(), vertices.end()), order);
 }
 
 }  // namespace rockcontact::kernel

@@ -141,9 +141,42 @@ EntranceBlock compute_entrance_block(const ConvexPolygon& a, const ConvexPolygon
   return out;
 }
 
+template <NumberPolicy Policy>
+double compute_penetration_depth(const ConvexPolygon& a, const ConvexPolygon& b) {
+  using FT = detail::ConstructionType<Policy>;
+  using Ops = detail::NumberOps<FT>;
+  const auto from = [](const Point2& p, const Point2& q) {  // p - q in FT
+    return detail::PointT<FT>{Ops::from(p.x) - Ops::from(q.x), Ops::from(p.y) - Ops::from(q.y)};
+  };
+  bool overlap = true;
+  FT best2(-1);
+  merge_edges<Policy>(a, b, [&](const MergedEdge& e) {
+    if (side_of_reference<Policy>(a, b, e) != Sign::positive) {  // touch or separate
+      overlap = false;
+      return false;
+    }
+    // The edge of E - a0 starts at w = b_j - a_i and runs along v: B's edge j, -A's edge i, or
+    // both when they are parallel. The origin (a0) is inside; its squared distance to the
+    // edge's line is (v x w)^2 / |v|^2.
+    const auto w = from(b[e.j], a[e.i]);
+    detail::PointT<FT> v{FT(0), FT(0)};
+    if (e.along_b) v = from(b[b.next(e.j)], b[e.j]);
+    if (e.along_a) {
+      const auto va = from(a[e.i], a[a.next(e.i)]);
+      v = {v.x + va.x, v.y + va.y};
+    }
+    const FT c = detail::cross(v.x, v.y, w.x, w.y);
+    const FT d2 = c * c / (v.x * v.x + v.y * v.y);
+    if (best2 < FT(0) || d2 < best2) best2 = d2;
+    return true;
+  });
+  return overlap ? Ops::to_double(Ops::sqrt(best2)) : 0.0;
+}
+
 #define ROCKCONTACT_INSTANTIATE(P)                                                      \
   template Overlap classify_overlap<P>(const ConvexPolygon&, const ConvexPolygon&); \
-  template EntranceBlock compute_entrance_block<P>(const ConvexPolygon&, const ConvexPolygon&);
+  template EntranceBlock compute_entrance_block<P>(const ConvexPolygon&, const ConvexPolygon&); \
+  template double compute_penetration_depth<P>(const ConvexPolygon&, const ConvexPolygon&);
 ROCKCONTACT_INSTANTIATE(Float)
 ROCKCONTACT_INSTANTIATE(Filtered)
 ROCKCONTACT_INSTANTIATE(Exact)

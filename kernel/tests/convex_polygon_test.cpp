@@ -10,6 +10,7 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -44,15 +45,37 @@ const char* reason_name(Reason r) {
   return "?";
 }
 
-// The error make() throws, or nullopt when it accepts the polygon.
+// The error make() throws, or nullopt when it accepts the polygon. Every case also checks
+// assign() (its one-pass check for valid CCW input, make() for the rest) on a polygon of the
+// same name: the same error, with the polygon left as it was, or the same accepted vertices.
 std::optional<InvalidPolygon> error_of(const std::string& name, std::vector<Point2> v,
                                        rk::VertexOrder order = rk::VertexOrder::require_ccw) {
+  const std::vector<Point2> triangle{{0, 0}, {1, 0}, {0, 1}};
+  ConvexPolygon assigned = ConvexPolygon::make(name, triangle);
+  std::optional<InvalidPolygon> from_assign;
   try {
-    static_cast<void>(ConvexPolygon::make(name, std::move(v), order));
+    assigned.assign(v, order);
   } catch (const InvalidPolygon& e) {
-    return e;
+    from_assign = e;
   }
-  return std::nullopt;
+  std::optional<InvalidPolygon> from_make;
+  try {
+    const ConvexPolygon made = ConvexPolygon::make(name, std::move(v), order);
+    BOOST_TEST_INFO("case " << name << ": assign accepts what make accepts, as make leaves it");
+    BOOST_TEST((!from_assign && made.reversed() == assigned.reversed() &&
+                std::equal(made.vertices().begin(), made.vertices().end(),
+                           assigned.vertices().begin(), assigned.vertices().end())));
+  } catch (const InvalidPolygon& e) {
+    from_make = e;
+    BOOST_TEST_INFO("case " << name << ": assign refuses what make refuses, for the same reason");
+    BOOST_TEST((from_assign && from_assign->reason() == e.reason() &&
+                from_assign->vertex() == e.vertex() &&
+                std::string(from_assign->what()) == e.what()));
+    BOOST_TEST_INFO("case " << name << ": a refused assign leaves the polygon as it was");
+    BOOST_TEST((std::equal(triangle.begin(), triangle.end(), assigned.vertices().begin(),
+                           assigned.vertices().end())));
+  }
+  return from_make;
 }
 
 // Asserts the reason, the vertex (when `vertex` >= 0; -1 means "the polygon as a whole") and
@@ -96,8 +119,8 @@ BOOST_AUTO_TEST_CASE(valid_polygons_are_kept_as_given) {
   BOOST_TEST(!q.reversed());
   for (std::size_t i = 0; i < 4; ++i) BOOST_TEST((q[i] == square[i]));
   // A 0.5 degree wedge and a polygon far from the origin are valid.
-  BOOST_CHECK_NO_THROW(ConvexPolygon::make("wedge", {{0, 0}, {1, -0.0043633}, {1, 0.0043633}}));
-  BOOST_CHECK_NO_THROW(ConvexPolygon::make("far", {{1e6, 1e6}, {1e6 + 0.01, 1e6}, {1e6, 1e6 + 0.01}}));
+  BOOST_TEST(!error_of("wedge", {{0, 0}, {1, -0.0043633}, {1, 0.0043633}}));
+  BOOST_TEST(!error_of("far", {{1e6, 1e6}, {1e6 + 0.01, 1e6}, {1e6, 1e6 + 0.01}}));
 }
 
 // Every reason, by name. The expected vertex follows from the definition: the first vertex
@@ -181,6 +204,7 @@ BOOST_AUTO_TEST_CASE(normalise_reverses_clockwise) {
   const std::vector<Point2> cw{{0, 0}, {0, 1}, {1, 1.5}, {1, 0}};
   const ConvexPolygon p = ConvexPolygon::make("cw", cw, rk::VertexOrder::normalise);
   BOOST_TEST(p.reversed());
+  BOOST_TEST(!error_of("cw", cw, rk::VertexOrder::normalise));  // assign reverses it alike
   BOOST_TEST_REQUIRE(p.size() == cw.size());
   // Same vertices, opposite order, and every turn now left (checked exactly).
   for (std::size_t i = 0; i < cw.size(); ++i) BOOST_TEST((p[i] == cw[cw.size() - 1 - i]));

@@ -43,6 +43,14 @@ class ConvexPolygon {
   static ConvexPolygon make(std::string name, std::vector<Point2> vertices,
                             VertexOrder order = VertexOrder::require_ccw);
 
+  // Replaces the vertices by `vertices`, validated as make() does, keeping the name. A valid
+  // counter-clockwise polygon is checked in one pass and copied into the existing storage: no
+  // allocation once the capacity suffices, which is what a host evaluating pair after pair
+  // needs. Anything else (an invalid polygon, or a clockwise one under normalise) goes through
+  // make(), which allocates to diagnose or reverse. Throws InvalidPolygon; on a throw the
+  // polygon is unchanged.
+  void assign(std::span<const Point2> vertices, VertexOrder order = VertexOrder::require_ccw);
+
   const std::string& name() const noexcept { return name_; }
   std::span<const Point2> vertices() const noexcept { return vertices_; }
   std::size_t size() const noexcept { return vertices_.size(); }

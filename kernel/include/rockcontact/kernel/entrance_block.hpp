@@ -56,4 +56,12 @@ struct EntranceBlock {
 template <NumberPolicy Policy>
 EntranceBlock compute_entrance_block(const ConvexPolygon& a, const ConvexPolygon& b);
 
+// The penetration depth of A and B (m): when they overlap, the minimum translation distance
+// that separates them (compute_entrance_block's `distance`), else 0. Each edge's distance is
+// taken as the merge produces it, so E is never stored: no allocation under Float and
+// Filtered. Under Exact the distance is exact up to its one square root, and equals
+// compute_entrance_block<Exact>'s.
+template <NumberPolicy Policy>
+double compute_penetration_depth(const ConvexPolygon& a, const ConvexPolygon& b);
+
 }  // namespace rockcontact::kernel
