@@ -3,12 +3,16 @@
 //   classify/<policy>/<pool>      kernel::classify_overlap (the verdict alone)
 //   intersection/<policy>/<pool>  kernel::compute_intersection_polygon + construct_points
 //   evaluate/<policy>/<pool>      contact::evaluate_pair (verdict, IP, force, contact point)
+//   pair_api/<policy>/<pool>      PairEvaluator::evaluate, the host-facing call: evaluate plus
+//                                 validating both polygons from plain arrays and the
+//                                 penetration depth (identity poses)
 //
 // Pools of 512 pairs (fixed seed, built before timing): `random` is the random family of
 // robustness_tests/pair_generators.hpp (overlap, touch, separate); `general` its pairs in general
-// position (touching pairs left out); `adversarial` cycles through the nine other families
-// (short edges, 5° and 0.5° wedges, near-parallel edges, exact vertex-on-edge, vertex-on-vertex
-// and edge-on-edge contacts, 1e6 m offsets, lattice touches).
+// position (touching pairs left out); `adversarial` cycles through the 17 other families
+// (short and tiny edges, wedges down to 0.1°, near-parallel edges down to one ulp, exact
+// vertex and edge incidences, slivers, nested and identical polygons, offsets to 1e9 m,
+// rotations).
 //
 // One benchmark iteration is one pass over the whole pool, so every policy is timed on the same
 // pairs (the Exact force costs milliseconds per pair; timing a prefix of the pool would bias
@@ -28,6 +32,7 @@
 #include <vector>
 
 #include "pair_generators.hpp"
+#include "rockcontact/contact/pair_contact.hpp"
 #include "rockcontact/contact/potential_contact.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
@@ -50,7 +55,14 @@ struct Pool {
   std::string name;
   std::vector<rk::ConvexPolygon> cp;
   std::vector<rk::ConvexPolygon> tp;
+  std::vector<std::vector<double>> cp_xy, tp_xy;  // the same polygons, interleaved x, y
 };
+
+std::vector<double> interleaved(const rk::ConvexPolygon& polygon) {
+  std::vector<double> xy;
+  for (const rk::Point2& p : polygon.vertices()) xy.insert(xy.end(), {p.x, p.y});
+  return xy;
+}
 
 enum class PoolKind { random, general, adversarial };
 
@@ -58,7 +70,7 @@ enum class PoolKind { random, general, adversarial };
 // the filter should certify every sign; `random` includes the touching pairs, each of which
 // needs one exact evaluation to confirm its zero.
 Pool make_pool(std::string name, PoolKind kind) {
-  Pool pool{std::move(name), {}, {}};
+  Pool pool{std::move(name), {}, {}, {}, {}};
   for (std::uint64_t index = 0; pool.cp.size() < pool_size; ++index) {
     // The adversarial pool skips all_families[0], the random family.
     const rb::Family family = kind == PoolKind::adversarial
@@ -68,6 +80,8 @@ Pool make_pool(std::string name, PoolKind kind) {
     rk::ConvexPolygon cp = rk::ConvexPolygon::make("cp", pair.cp);
     rk::ConvexPolygon tp = rk::ConvexPolygon::make("tp", pair.tp);
     if (kind == PoolKind::general && rk::classify_overlap<rk::Exact>(cp, tp) == rk::Overlap::touch) continue;
+    pool.cp_xy.push_back(interleaved(cp));
+    pool.tp_xy.push_back(interleaved(tp));
     pool.cp.push_back(std::move(cp));
     pool.tp.push_back(std::move(tp));
   }
@@ -105,6 +119,16 @@ void evaluate(benchmark::State& state, const Pool& pool) {
 }
 
 template <rk::NumberPolicy Policy>
+void pair_api(benchmark::State& state, const Pool& pool) {
+  rockcontact::PairContactParams params = rockcontact::default_pair_contact_params();
+  params.policy = Policy::kind;
+  rockcontact::PairEvaluator contact(params);
+  run_passes(state, pool_size, [&](std::size_t i) {
+    benchmark::DoNotOptimize(contact.evaluate(pool.cp_xy[i], {}, pool.tp_xy[i], {}));
+  });
+}
+
+template <rk::NumberPolicy Policy>
 void register_policy(const Pool& pool) {
   const std::string suffix = std::string("/") + std::string(Policy::name) + "/" + pool.name;
   const Pool* p = &pool;  // outlives the run (main's locals)
@@ -114,6 +138,8 @@ void register_policy(const Pool& pool) {
                                [p](benchmark::State& state) { intersection<Policy>(state, *p); });
   benchmark::RegisterBenchmark(("evaluate" + suffix).c_str(),
                                [p](benchmark::State& state) { evaluate<Policy>(state, *p); });
+  benchmark::RegisterBenchmark(("pair_api" + suffix).c_str(),
+                               [p](benchmark::State& state) { pair_api<Policy>(state, *p); });
 }
 
 }  // namespace

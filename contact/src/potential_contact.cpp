@@ -20,21 +20,6 @@ using kernel::IpVertex;
 template <class FT>
 using Pt = kd::PointT<FT>;
 
-void check_params(const PotentialContactParams& params) {
-  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-  if (!positive(params.kn)) {
-    throw std::invalid_argument("potential contact: kn must be finite and > 0 (Pa), got " +
-                                std::to_string(params.kn));
-  }
-  if (!positive(params.H)) {
-    throw std::invalid_argument("potential contact: H must be finite and > 0 (m), got " +
-                                std::to_string(params.H));
-  }
-  if (!(params.small_edge_fraction >= 0.0) || !std::isfinite(params.small_edge_fraction)) {
-    throw std::invalid_argument("potential contact: small_edge_fraction must be finite and >= 0");
-  }
-}
-
 template <class FT>
 Pt<FT> vertex_point(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpVertex& v) {
   switch (v.kind) {
@@ -170,6 +155,21 @@ void integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
 }
 
 }  // namespace
+
+void check_params(const PotentialContactParams& params) {
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (!positive(params.kn)) {
+    throw std::invalid_argument("potential contact: kn must be finite and > 0 (Pa), got " +
+                                std::to_string(params.kn));
+  }
+  if (!positive(params.H)) {
+    throw std::invalid_argument("potential contact: H must be finite and > 0 (m), got " +
+                                std::to_string(params.H));
+  }
+  if (!(params.small_edge_fraction >= 0.0) || !std::isfinite(params.small_edge_fraction)) {
+    throw std::invalid_argument("potential contact: small_edge_fraction must be finite and >= 0");
+  }
+}
 
 template <kernel::NumberPolicy Policy>
 void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,

@@ -117,11 +117,11 @@ Probe incline_slide(const Scene& scene) {
           }};
 }
 
-// The incline block starts at its static penetration δ = m g cos θ H / (2 kn L), so that the
-// normal spring starts in equilibrium (examples/scenes/README.md). δ goes as 1 / kn: with kn
-// scaled, the block is moved along the slope's normal to δ / factor, or a stiffer spring would
-// throw it off the slope and a softer one drop it, both transients unrelated to the contact's
-// accuracy.
+// The incline block starts at its static penetration δ = m g cos θ H / (2 kn L) (to first order
+// in δ / L), so that the normal spring starts in equilibrium (examples/scenes/README.md). δ goes
+// as 1 / kn: with kn scaled, the block is moved along the slope's normal to δ / factor, or a
+// stiffer spring would throw it off the slope and a softer one drop it, both transients
+// unrelated to the contact's accuracy.
 void reseat_incline_block(Scene& scene, double kn_factor) {
   const Vector2 normal{-std::sin(incline_theta), std::cos(incline_theta)};  // out of the slope
   for (BlockSpec& block : scene.blocks) {

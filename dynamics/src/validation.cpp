@@ -238,8 +238,8 @@ void symmetric_system(const Validator& v, std::vector<ValidationRow>& rows) {
 // paper's kt = 10 MN/m and a 1 m square (m = 2000 kg/m, w = 71 rad/s) it is 3.9 % at 1 s for
 // φ = 20°, so the scene files use a 0.5 m x 0.25 m block (m = 250 kg/m, w = 200 rad/s, 0.66 %
 // at 2 s for φ = 20°, 0.12 % for φ = 10°, none for φ = 0°). The block starts sunk by its static
-// overlap m g cos θ H / (2 kn L), so the normal spring starts in equilibrium and does not
-// bounce the stick phase back.
+// overlap m g cos θ H / (2 kn L) (first order in δ / L: the law's force is kn (2 L δ - δ²) / H),
+// so the normal spring starts in equilibrium to 1e-4 and does not bounce the stick phase back.
 //
 // (2) the elastic-plastic closed form of the same penalty contact: stick on kt from rest under
 // the full normal force, then Coulomb sliding at a = g (sin θ - cos θ tan φ):

@@ -56,6 +56,11 @@ struct PotentialContactParams {
 
 inline PotentialContactParams default_potential_contact_params() { return {}; }
 
+// Throws std::invalid_argument unless kn and H are finite and > 0 and small_edge_fraction is
+// finite and >= 0. evaluate_pair checks this on every call; callers that hold parameters
+// check them once, up front.
+void check_params(const PotentialContactParams& params);
+
 struct PairResult {
   Overlap status = Overlap::separate;
   kernel::IntersectionPolygon ip_features;  // symbolic IP: stable ids of every vertex and edge

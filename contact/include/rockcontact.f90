@@ -1,0 +1,128 @@
+! rockcontact.f90: Fortran 2003 bindings (iso_c_binding) to the C API in rockcontact.h; read
+! that header for the units, preconditions and error handling. Compile this file with your
+! program (module files are compiler-specific, so the source is what is installed) and link
+! the rockcontact libraries with a C++-aware link line (see the README).
+!
+!   use rockcontact
+!   type(rockcontact_params) :: params
+!   type(c_ptr) :: contact
+!   type(rockcontact_pair_result) :: r
+!   call rockcontact_default_params(params)
+!   if (rockcontact_evaluator_create(params, contact) /= ROCKCONTACT_OK) &
+!     print *, rockcontact_last_error()
+!   status = rockcontact_evaluate_pair(contact, a_xy, n_a, a_pose, b_xy, n_b, b_pose, r)
+!   call rockcontact_evaluator_destroy(contact)
+!
+! a_xy(2 * n_a) holds x1, y1, x2, y2, ... (local frame, m, counter-clockwise); a_pose(3) holds
+! x, y (m) and theta (rad). Status codes and the result's `status` are the C enumerators.
+module rockcontact
+  use, intrinsic :: iso_c_binding, only: c_int, c_int32_t, c_int64_t, c_double, c_ptr, c_char, &
+                                         c_null_char, c_f_pointer, c_associated
+  implicit none
+  private
+
+  integer(c_int), parameter, public :: ROCKCONTACT_OK = 0, ROCKCONTACT_ERROR_INVALID_ARGUMENT = 1, &
+                                       ROCKCONTACT_ERROR_INVALID_POLYGON = 2, &
+                                       ROCKCONTACT_ERROR_OUT_OF_MEMORY = 3, &
+                                       ROCKCONTACT_ERROR_INTERNAL = 4
+  integer(c_int32_t), parameter, public :: ROCKCONTACT_POLICY_FLOAT = 0, &
+                                           ROCKCONTACT_POLICY_FILTERED = 1, &
+                                           ROCKCONTACT_POLICY_EXACT = 2
+  integer(c_int32_t), parameter, public :: ROCKCONTACT_DEMARCATION_EXACT = 0, &
+                                           ROCKCONTACT_DEMARCATION_PAPER = 1
+  integer(c_int32_t), parameter, public :: ROCKCONTACT_SEPARATE = 0, ROCKCONTACT_TOUCH = 1, &
+                                           ROCKCONTACT_OVERLAP = 2
+
+  type, bind(C), public :: rockcontact_params
+    real(c_double) :: kn                   ! Pa, > 0
+    real(c_double) :: H                    ! m, > 0
+    real(c_double) :: small_edge_fraction  ! paper demarcation only
+    integer(c_int32_t) :: policy           ! ROCKCONTACT_POLICY_*
+    integer(c_int32_t) :: demarcation      ! ROCKCONTACT_DEMARCATION_*
+  end type
+
+  type, bind(C), public :: rockcontact_pair_result
+    integer(c_int32_t) :: status       ! ROCKCONTACT_SEPARATE, _TOUCH or _OVERLAP
+    integer(c_int32_t) :: has_point    ! 1 when overlapping with a non-zero force
+    real(c_double) :: force(2)         ! normal force on a, N/m; on b it is -force
+    real(c_double) :: point(2)         ! contact point, m (when has_point = 1)
+    real(c_double) :: area             ! intersection polygon area, m^2
+    real(c_double) :: penetration      ! minimum translation distance, m
+    integer(c_int64_t) :: predicates   ! predicate calls spent on the pair
+    integer(c_int64_t) :: fallbacks    ! of which re-evaluated exactly
+  end type
+
+  public :: rockcontact_default_params, rockcontact_evaluator_create, &
+            rockcontact_evaluator_destroy, rockcontact_evaluate_pair, rockcontact_last_error, &
+            rockcontact_version
+
+  interface
+    subroutine rockcontact_default_params(params) bind(C, name="rockcontact_default_params")
+      import :: rockcontact_params
+      type(rockcontact_params), intent(out) :: params
+    end subroutine
+
+    function rockcontact_evaluator_create(params, evaluator) result(code) &
+        bind(C, name="rockcontact_evaluator_create")
+      import :: rockcontact_params, c_ptr, c_int
+      type(rockcontact_params), intent(in) :: params
+      type(c_ptr), intent(out) :: evaluator
+      integer(c_int) :: code
+    end function
+
+    subroutine rockcontact_evaluator_destroy(evaluator) bind(C, name="rockcontact_evaluator_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: evaluator
+    end subroutine
+
+    function rockcontact_evaluate_pair(evaluator, a_xy, a_count, a_pose, b_xy, b_count, b_pose, &
+                                       result) result(code) bind(C, name="rockcontact_evaluate_pair")
+      import :: rockcontact_pair_result, c_ptr, c_int, c_int32_t, c_double
+      type(c_ptr), value :: evaluator
+      real(c_double), intent(in) :: a_xy(*), a_pose(3), b_xy(*), b_pose(3)
+      integer(c_int32_t), value :: a_count, b_count
+      type(rockcontact_pair_result), intent(out) :: result
+      integer(c_int) :: code
+    end function
+
+    function c_last_error() result(message) bind(C, name="rockcontact_last_error")
+      import :: c_ptr
+      type(c_ptr) :: message
+    end function
+
+    function c_version() result(version) bind(C, name="rockcontact_version")
+      import :: c_ptr
+      type(c_ptr) :: version
+    end function
+  end interface
+
+contains
+
+  ! The message of the last failed call on this thread, as a Fortran string.
+  function rockcontact_last_error() result(message)
+    character(len=:), allocatable :: message
+    message = from_c_string(c_last_error())
+  end function
+
+  function rockcontact_version() result(version)
+    character(len=:), allocatable :: version
+    version = from_c_string(c_version())
+  end function
+
+  function from_c_string(pointer) result(text)
+    type(c_ptr), intent(in) :: pointer
+    character(len=:), allocatable :: text
+    character(kind=c_char), pointer :: chars(:)
+    integer :: n
+    n = 0
+    if (c_associated(pointer)) then
+      call c_f_pointer(pointer, chars, [huge(0)])
+      do while (chars(n + 1) /= c_null_char)
+        n = n + 1
+      end do
+    end if
+    allocate(character(len=n) :: text)
+    if (n > 0) text = transfer(chars(1:n), text)
+  end function
+
+end module rockcontact

@@ -1,0 +1,159 @@
+// The C API (rockcontact.h) over PairEvaluator (pair_contact.hpp). Every entry point catches
+// every exception and turns it into an error code plus a per-thread message: nothing unwinds
+// into C or Fortran frames.
+
+#include "rockcontact.h"
+
+#include <cmath>
+#include <exception>
+#include <new>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "rockcontact/contact/pair_contact.hpp"
+#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/version.hpp"
+
+struct rockcontact_evaluator {
+  rockcontact::PairEvaluator pairs;
+};
+
+namespace {
+
+thread_local std::string last_error;
+
+rockcontact_error fail(rockcontact_error code, std::string message) {
+  last_error = std::move(message);
+  return code;
+}
+
+// The code and message of the exception in flight; called only from a catch (...) block.
+rockcontact_error from_exception() {
+  try {
+    throw;
+  } catch (const rockcontact::kernel::InvalidPolygon& e) {
+    return fail(ROCKCONTACT_ERROR_INVALID_POLYGON, e.what());
+  } catch (const std::invalid_argument& e) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(ROCKCONTACT_ERROR_OUT_OF_MEMORY, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(ROCKCONTACT_ERROR_INTERNAL, std::string("internal error: ") + e.what());
+  } catch (...) {
+    return fail(ROCKCONTACT_ERROR_INTERNAL, "internal error: unknown exception");
+  }
+}
+
+rockcontact::PairContactParams to_cpp(const rockcontact_params& p) {
+  namespace rk = rockcontact::kernel;
+  rockcontact::PairContactParams out;
+  out.kn = p.kn;
+  out.H = p.H;
+  out.small_edge_fraction = p.small_edge_fraction;
+  switch (p.policy) {
+    case ROCKCONTACT_POLICY_FLOAT: out.policy = rk::PolicyKind::float_; break;
+    case ROCKCONTACT_POLICY_FILTERED: out.policy = rk::PolicyKind::filtered; break;
+    case ROCKCONTACT_POLICY_EXACT: out.policy = rk::PolicyKind::exact; break;
+    default:
+      throw std::invalid_argument("params.policy: expected ROCKCONTACT_POLICY_FLOAT (0), _FILTERED "
+                                  "(1) or _EXACT (2), got " + std::to_string(p.policy));
+  }
+  switch (p.demarcation) {
+    case ROCKCONTACT_DEMARCATION_EXACT: out.demarcation = rk::Demarcation::exact; break;
+    case ROCKCONTACT_DEMARCATION_PAPER: out.demarcation = rk::Demarcation::paper; break;
+    default:
+      throw std::invalid_argument("params.demarcation: expected ROCKCONTACT_DEMARCATION_EXACT (0) "
+                                  "or _PAPER (1), got " + std::to_string(p.demarcation));
+  }
+  return out;
+}
+
+// A polygon argument as a span, after the checks the C++ API cannot make on a raw pointer.
+std::span<const double> polygon(const char* name, const double* xy, int32_t count) {
+  if (xy == nullptr) throw std::invalid_argument(std::string("polygon ") + name + ": null vertex array");
+  if (count < 3) {
+    throw std::invalid_argument(std::string("polygon ") + name + ": needs at least 3 vertices, got " +
+                                std::to_string(count));
+  }
+  return {xy, 2 * static_cast<std::size_t>(count)};
+}
+
+rockcontact::Pose2 pose(const double* p) {
+  return p == nullptr ? rockcontact::Pose2{} : rockcontact::Pose2{p[0], p[1], p[2]};
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* rockcontact_version(void) { return ROCKCONTACT_VERSION_STRING; }
+
+void rockcontact_default_params(rockcontact_params* params) {
+  if (params == nullptr) return;
+  const rockcontact::PairContactParams d = rockcontact::default_pair_contact_params();
+  params->kn = d.kn;
+  params->H = d.H;
+  params->small_edge_fraction = d.small_edge_fraction;
+  params->policy = ROCKCONTACT_POLICY_FILTERED;
+  params->demarcation = ROCKCONTACT_DEMARCATION_EXACT;
+}
+
+rockcontact_error rockcontact_evaluator_create(const rockcontact_params* params,
+                                               rockcontact_evaluator** out) {
+  last_error.clear();
+  if (params == nullptr || out == nullptr) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_evaluator_create: null argument");
+  }
+  try {
+    *out = new rockcontact_evaluator{rockcontact::PairEvaluator(to_cpp(*params))};
+    return ROCKCONTACT_OK;
+  } catch (...) {
+    return from_exception();
+  }
+}
+
+void rockcontact_evaluator_destroy(rockcontact_evaluator* evaluator) { delete evaluator; }
+
+rockcontact_error rockcontact_evaluate_pair(rockcontact_evaluator* evaluator, const double* a_xy,
+                                            int32_t a_count, const double* a_pose,
+                                            const double* b_xy, int32_t b_count,
+                                            const double* b_pose, rockcontact_pair_result* result) {
+  last_error.clear();
+  if (evaluator == nullptr || result == nullptr) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_evaluate_pair: null argument");
+  }
+  try {
+    const rockcontact::PairContact c =
+        evaluator->pairs.evaluate(polygon("a", a_xy, a_count), pose(a_pose),
+                                  polygon("b", b_xy, b_count), pose(b_pose));
+    result->status = static_cast<int32_t>(c.status);
+    result->has_point = c.has_point ? 1 : 0;
+    result->force[0] = c.force[0];
+    result->force[1] = c.force[1];
+    result->point[0] = c.point[0];
+    result->point[1] = c.point[1];
+    result->area = c.area;
+    result->penetration = c.penetration;
+    result->predicates = static_cast<int64_t>(c.predicates);
+    result->fallbacks = static_cast<int64_t>(c.fallbacks);
+    return ROCKCONTACT_OK;
+  } catch (...) {
+    return from_exception();
+  }
+}
+
+const char* rockcontact_last_error(void) { return last_error.c_str(); }
+
+const char* rockcontact_error_string(rockcontact_error code) {
+  switch (code) {
+    case ROCKCONTACT_OK: return "ok";
+    case ROCKCONTACT_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case ROCKCONTACT_ERROR_INVALID_POLYGON: return "invalid polygon";
+    case ROCKCONTACT_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case ROCKCONTACT_ERROR_INTERNAL: return "internal error";
+  }
+  return "unknown error code";
+}
+
+}  // extern "C"
