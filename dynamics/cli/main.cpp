@@ -4,7 +4,8 @@
 //
 // Exit status: 0 success (pairs with an invalid polygon are results, not failures), 2 malformed
 // input, bad flags, an output file that cannot be written or a scene the engine refuses or
-// stops (StabilityError), 3 a `validate` check that failed, 1 an unexpected internal error.
+// stops (StabilityError), 3 a check that failed (a `validate` scene off its reference, a
+// `pairs --compare` that found a disagreement), 1 an unexpected internal error.
 
 #include <unistd.h>
 
@@ -19,8 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_cases.hpp"
 #include "rockcontact/dynamics/atomic_file.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
+#include "rockcontact/dynamics/pairs_compare.hpp"
 #include "rockcontact/dynamics/pairs_io.hpp"
 #include "rockcontact/dynamics/pairs_summary.hpp"
 #include "rockcontact/dynamics/report.hpp"
@@ -38,13 +41,15 @@ namespace kernel = rockcontact::kernel;
 constexpr int exit_ok = 0;
 constexpr int exit_internal_error = 1;
 constexpr int exit_bad_input = 2;
-constexpr int exit_validation_failed = 3;
+constexpr int exit_check_failed = 3;
 
 struct PairsOptions {
   std::string input;
   std::string output;  // empty: no JSON; "-": JSON on stdout, summary on stderr
   std::string policy;
   std::string demarcation;
+  std::string compare;  // THEIRS.json: compare mode
+  dyn::CompareOptions compare_options;
 };
 
 void write_json(const std::string& target, const nlohmann::ordered_json& document) {
@@ -57,13 +62,32 @@ void write_json(const std::string& target, const nlohmann::ordered_json& documen
   file.commit();
 }
 
-int run_pairs(const PairsOptions& options) {
-  const dyn::PairsInput input = dyn::read_pairs_file(options.input);
+dyn::PairsOverrides pairs_overrides(const PairsOptions& options) {
   dyn::PairsOverrides overrides;
   if (!options.policy.empty()) overrides.policy = kernel::parse_policy(options.policy);
   if (!options.demarcation.empty())
     overrides.demarcation = kernel::parse_demarcation(options.demarcation);
-  const nlohmann::ordered_json document = dyn::run_pairs(input, overrides);
+  return overrides;
+}
+
+// `pairs --compare THEIRS IN`: the report on stdout (stderr when the JSON goes to stdout).
+int run_compare(const PairsOptions& options) {
+  const dyn::PairsInput input = dyn::read_pairs_file(options.input);
+  const dyn::ResultsDocument theirs = dyn::read_results_file(options.compare);
+  const dyn::Comparison comparison =
+      dyn::compare_pairs(input, theirs, pairs_overrides(options), options.compare_options);
+  if (!options.output.empty()) write_json(options.output, dyn::comparison_json(comparison));
+  std::ostream& report = options.output == "-" ? std::cerr : std::cout;
+  dyn::write_comparison(report, comparison);
+  if (!options.output.empty() && options.output != "-")
+    report << "JSON written to " << options.output << '\n';
+  return comparison.agrees() ? exit_ok : exit_check_failed;
+}
+
+int run_pairs(const PairsOptions& options) {
+  if (!options.compare.empty()) return run_compare(options);
+  const dyn::PairsInput input = dyn::read_pairs_file(options.input);
+  const nlohmann::ordered_json document = dyn::run_pairs(input, pairs_overrides(options));
   if (!options.output.empty()) write_json(options.output, document);
   std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
   dyn::write_pairs_summary(summary, document);
@@ -72,19 +96,46 @@ int run_pairs(const PairsOptions& options) {
   return exit_ok;
 }
 
+void add_compare_options(CLI::App* sub, PairsOptions& options) {
+  CLI::Option* compare =
+      sub->add_option("--compare", options.compare,
+                      "THEIRS.json: another kernel's results for INPUT (output schema, only "
+                      "results[].id required); compare them with ours field by field and exit "
+                      "3 on a disagreement (dynamics/.../pairs_compare.hpp)");
+  sub->add_option("--rtol", options.compare_options.rtol,
+                  "With --compare: relative tolerance (error > atol + rtol * scale disagrees)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->needs(compare);
+  sub->add_option("--atol", options.compare_options.atol,
+                  "With --compare: absolute tolerance, in each field's unit (m^2, N/m, m)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->needs(compare);
+  sub->add_option("--worst", options.compare_options.worst,
+                  "With --compare: worst cases shown per field")
+      ->capture_default_str()
+      ->needs(compare);
+}
+
 void add_pairs(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<PairsOptions>();
   CLI::App* sub = app.add_subcommand(
-      "pairs", "Evaluate the contact of polygon pairs read from JSON under a number policy");
+      "pairs",
+      "Evaluate the contact of polygon pairs read from JSON under a number policy, or check "
+      "another kernel's results for them against ours (--compare)");
   sub->add_option("input", options->input, "Input JSON: kn, H, pairs [{id, cp, tp}]")->required();
   sub->add_option("-o,--output", options->output,
-                  "Write the result document as JSON ('-' for stdout)");
+                  "Write the result document (with --compare: the comparison report) as JSON "
+                  "('-' for stdout)");
   sub->add_option("--policy", options->policy,
-                  "Number policy, overrides the file's (default filtered)")
+                  "Number policy, overrides the file's (default filtered; with --compare "
+                  "default exact, and the file's policy is ignored)")
       ->check(CLI::IsMember({"float", "filtered", "exact"}));
   sub->add_option("--demarcation", options->demarcation,
                   "Demarcation points, overrides the file's (default exact)")
       ->check(CLI::IsMember({"paper", "exact"}));
+  add_compare_options(sub, *options);
   sub->callback([options, &exit_status] { exit_status = run_pairs(*options); });
 }
 
@@ -239,7 +290,7 @@ int run_validate(const SceneSetArgs& options) {
   dyn::write_validation_table(std::cout, rows);
   std::cout << "total wall time " << std::setprecision(3) << seconds << " s\n";
   for (const dyn::ValidationRow& row : rows) {
-    if (!row.pass) return exit_validation_failed;
+    if (!row.pass) return exit_check_failed;
   }
   return exit_ok;
 }
@@ -251,6 +302,58 @@ void add_validate(CLI::App& app, int& exit_status) {
   add_scene_set_options(sub, *options);
   sub->add_option("-o,--out", options->out, "Write each run's outputs into DIR/<scene>/");
   sub->callback([options, &exit_status] { exit_status = run_validate(*options); });
+}
+
+struct FuzzCasesArgs {
+  std::string family;
+  rockcontact::cli::FuzzCases cases;
+  std::string output;
+};
+
+int run_fuzz_cases(FuzzCasesArgs options) {
+  // CLI11 has checked --family with parse_families.
+  options.cases.families = rockcontact::cli::parse_families(options.family).value();
+  std::uint64_t written = 0;
+  if (options.output == "-") {
+    written = rockcontact::cli::write_fuzz_cases(std::cout, options.cases);
+  } else {
+    dyn::AtomicFile file(options.output);
+    written = rockcontact::cli::write_fuzz_cases(file.stream(), options.cases);
+    file.commit();
+  }
+  std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
+  summary << written << " cases (" << options.family << ", seed " << options.cases.seed << ')';
+  if (options.output != "-") summary << " written to " << options.output;
+  summary << '\n';
+  return exit_ok;
+}
+
+void add_fuzz_cases(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<FuzzCasesArgs>();
+  CLI::App* sub = app.add_subcommand("fuzz-cases",
+                                     "Write pairs from the robustness generators as a `pairs` "
+                                     "input file (ids FAMILY-sSEED-iINDEX)");
+  sub->add_option("--family", options->family,
+                  "Generator families, comma-separated, or all (COUNT of each)")
+      ->required()
+      ->check(CLI::Validator(
+          [](const std::string& names) -> std::string {
+            if (rockcontact::cli::parse_families(names)) return "";
+            return "unknown family in \"" + names + "\"; expected " +
+                   rockcontact::cli::family_choices() + ", or names separated by commas";
+          },
+          "FAMILY[,FAMILY...]"));
+  sub->add_option("--count", options->cases.count, "Pairs per family")->required();
+  sub->add_option("--seed", options->cases.seed, "Seed of the generators' streams")
+      ->capture_default_str();
+  sub->add_option("--kn", options->cases.kn, "Normal penalty kn, Pa")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--H", options->cases.H, "Potential length scale H, m")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("-o,--output", options->output, "Cases JSON ('-' for stdout)")->required();
+  sub->callback([options, &exit_status] { exit_status = run_fuzz_cases(*options); });
 }
 
 int run_report(const SceneSetArgs& options) {
@@ -292,6 +395,7 @@ int main(int argc, char** argv) {
   add_cut(app, exit_status);
   add_validate(app, exit_status);
   add_report(app, exit_status);
+  add_fuzz_cases(app, exit_status);
   try {
     app.parse(argc, argv);
     return exit_status;

@@ -155,4 +155,14 @@ std::vector<kernel::Point2> JsonReader::polygon(const json& value, const std::st
   return vertices;
 }
 
+void UniqueIds::add(const JsonReader& reader, const std::string& array_path, std::size_t index,
+                    const std::string& id) {
+  const auto [it, inserted] = first_index_.emplace(id, index);
+  if (!inserted) {
+    reader.fail(json_child(json_element(array_path, index), "id"),
+                "duplicate id \"" + id + "\" (also " + json_element(array_path, it->second) +
+                    ".id); expected ids unique within the file");
+  }
+}
+
 }  // namespace rockcontact::dynamics

@@ -5,7 +5,6 @@
 #include <optional>
 #include <span>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 
 #include "rockcontact/contact/potential_contact.hpp"
@@ -54,15 +53,10 @@ std::vector<PairSpec> read_pair_list(const JsonReader& reader, const json& value
   if (!value.is_array()) reader.fail_expected(path, expected(document_fields, "pairs"), value);
   std::vector<PairSpec> result;
   result.reserve(value.size());
-  std::unordered_map<std::string, std::size_t> first_index;
+  UniqueIds ids;
   for (std::size_t i = 0; i < value.size(); ++i) {
     result.push_back(read_pair(reader, value[i], json_element(path, i)));
-    const auto [it, inserted] = first_index.emplace(result.back().id, i);
-    if (!inserted) {
-      reader.fail(json_child(json_element(path, i), "id"),
-                  "duplicate id \"" + result.back().id + "\" (also " +
-                      json_element(path, it->second) + ".id); expected ids unique within the file");
-    }
+    ids.add(reader, path, i, result.back().id);
   }
   return result;
 }

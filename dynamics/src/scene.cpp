@@ -5,7 +5,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <unordered_map>
 #include <utility>
 
 #include "rockcontact/dynamics/json_read.hpp"
@@ -215,17 +214,12 @@ class SceneParser {
     if (!document.contains("blocks")) return;
     const json& value = document.at("blocks");
     if (!value.is_array()) reader_.fail_expected("blocks", expected(scene_fields, "blocks"), value);
-    std::unordered_map<std::string, std::size_t> first_index;
+    UniqueIds ids;
     for (std::size_t i = 0; i < value.size(); ++i) {
       const std::string path = json_element("blocks", i);
       scene.blocks.push_back(block(value[i], path));
       scene.material_names.push_back(value[i].at("material").get<std::string>());
-      const auto [it, inserted] = first_index.emplace(scene.blocks.back().id, i);
-      if (!inserted) {
-        reader_.fail(json_child(path, "id"), "duplicate id \"" + scene.blocks.back().id +
-                                                 "\" (also " + json_element("blocks", it->second) +
-                                                 ".id); expected ids unique within the scene");
-      }
+      ids.add(reader_, "blocks", i, scene.blocks.back().id);
     }
   }
 

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -96,6 +97,17 @@ class JsonReader {
 
  private:
   std::string source_;
+};
+
+// The "id" members of an array's elements, checked for repeats as the elements are read.
+class UniqueIds {
+ public:
+  // Fails at "<array_path>[index].id" when `id` was seen before, naming the element that had it.
+  void add(const JsonReader& reader, const std::string& array_path, std::size_t index,
+           const std::string& id);
+
+ private:
+  std::unordered_map<std::string, std::size_t> first_index_;
 };
 
 }  // namespace rockcontact::dynamics
