@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE contact_pair_contact
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/json_file.hpp"
+
 // The host-facing pair API (pair_contact.hpp) against independent references:
 //   (a) the closed form "corner" of potential_contact_test.cpp (CP = [0,2]×[0,1],
 //       TP = [1.25,4]×[0.25,2]: f = kn/H (-1/2, -7/16), pg = (369/226, 557/904), area 9/16),
@@ -18,7 +20,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <new>
 #include <numbers>
@@ -59,6 +60,7 @@ using rockcontact::Pose2;
 using rockcontact::kernel::ConvexPolygon;
 using rockcontact::kernel::Point2;
 using rockcontact::kernel::PolicyKind;
+using rockcontact::testing::read_json;
 
 PairContactParams params(PolicyKind policy, double kn = 1.0e7, double H = 1.0) {
   PairContactParams p = rockcontact::default_pair_contact_params();
@@ -162,12 +164,6 @@ std::vector<double> read_polygon(const nlohmann::json& j) {
   std::vector<double> xy;
   for (const auto& p : j) xy.insert(xy.end(), {p.at(0).get<double>(), p.at(1).get<double>()});
   return xy;
-}
-
-nlohmann::json read_json(const std::string& file) {
-  std::ifstream stream(file);
-  BOOST_TEST_REQUIRE(stream.good(), "cannot open " << file);
-  return nlohmann::json::parse(stream);
 }
 
 // The contact2d reference pairs (robustness_tests/data/contact2d: an independent exact

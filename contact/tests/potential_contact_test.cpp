@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE contact_potential_contact
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/json_file.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // Potential contact of a pair (seed 000 §3.2, eq. 11-20) against independent references:
@@ -69,7 +70,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -91,6 +91,7 @@ using rk::Vector2;
 
 namespace {
 
+using rockcontact::testing::read_json;
 using rockcontact::testing::seed_for;
 
 constexpr double u = rockcontact::testing::unit_roundoff;
@@ -355,12 +356,6 @@ BOOST_AUTO_TEST_CASE(invariant_under_translation_and_rotation) {
 // 1e-9 size, absent exactly when the expected point is null. Filtered and Exact must meet
 // them; Float disagreements in status and IP vertex count are counted and printed.
 namespace {
-
-nlohmann::json read_json(const std::string& file) {
-  std::ifstream stream(file);
-  BOOST_TEST_REQUIRE(stream.good(), "cannot open " << file);
-  return nlohmann::json::parse(stream);
-}
 
 std::vector<Point2> points(const nlohmann::json& j) {
   std::vector<Point2> out;

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE pairs_reference
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/json_file.hpp"
+
 // End-to-end check of the JSON path of `rockcontact pairs`: read the independent contact2d
 // reference input from its file, run it, and compare the output document with the exactly
 // computed expected.json (robustness_tests/data/contact2d/README.md). Tolerances are the ones
@@ -15,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -29,13 +30,9 @@ using nlohmann::ordered_json;
 
 namespace {
 
-const std::string reference_dir = std::string(ROCKCONTACT_TESTDATA_DIR) + "/contact2d";
+using rockcontact::testing::read_json;
 
-json read_json(const std::string& file) {
-  std::ifstream stream(file);
-  BOOST_TEST_REQUIRE(stream.good(), "cannot open " << file);
-  return json::parse(stream);
-}
+const std::string reference_dir = std::string(ROCKCONTACT_TESTDATA_DIR) + "/contact2d";
 
 double distance(const json& a, const ordered_json& b) {
   return std::hypot(a[0].get<double>() - b[0].get<double>(),
