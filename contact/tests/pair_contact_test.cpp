@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE contact_pair_contact
 #include <boost/test/unit_test.hpp>
 
-#include "rockcontact/testing/json_file.hpp"
+#include "rockcontact/testing/contact2d.hpp"
 
 // The host-facing pair API (pair_contact.hpp) against independent references:
 //   (a) the closed form "corner" of potential_contact_test.cpp (CP = [0,2]×[0,1],
@@ -60,7 +60,6 @@ using rockcontact::Pose2;
 using rockcontact::kernel::ConvexPolygon;
 using rockcontact::kernel::Point2;
 using rockcontact::kernel::PolicyKind;
-using rockcontact::testing::read_json;
 
 PairContactParams params(PolicyKind policy, double kn = 1.0e7, double H = 1.0) {
   PairContactParams p = rockcontact::default_pair_contact_params();
@@ -156,13 +155,13 @@ namespace {
 
 struct ReferencePair {
   std::string id;
-  std::vector<double> cp, tp;
+  std::vector<double> cp, tp;  // interleaved x, y, as a host passes them
   nlohmann::json expected;
 };
 
-std::vector<double> read_polygon(const nlohmann::json& j) {
+std::vector<double> interleaved(const std::vector<Point2>& points) {
   std::vector<double> xy;
-  for (const auto& p : j) xy.insert(xy.end(), {p.at(0).get<double>(), p.at(1).get<double>()});
+  for (const Point2& p : points) xy.insert(xy.end(), {p.x, p.y});
   return xy;
 }
 
@@ -175,15 +174,10 @@ struct ReferenceData {
 
 const ReferenceData& reference_data() {
   static const ReferenceData data = [] {
-    const std::string dir = std::string(ROCKCONTACT_TESTDATA_DIR) + "/contact2d";
-    const nlohmann::json input = read_json(dir + "/pairs.json");
-    const nlohmann::json expected = read_json(dir + "/expected.json");
-    ReferenceData d{input.at("kn").get<double>(), input.at("H").get<double>(), {}};
-    const auto& results = expected.at("results");
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const auto& pair = input.at("pairs").at(i);
-      d.pairs.push_back({pair.at("id").get<std::string>(), read_polygon(pair.at("cp")),
-                         read_polygon(pair.at("tp")), results.at(i)});
+    const rockcontact::testing::Contact2dData& raw = rockcontact::testing::contact2d_data();
+    ReferenceData d{raw.kn, raw.H, {}};
+    for (const auto& pair : raw.pairs) {
+      d.pairs.push_back({pair.id, interleaved(pair.cp), interleaved(pair.tp), pair.expected});
     }
     return d;
   }();

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE contact_potential_contact
 #include <boost/test/unit_test.hpp>
 
-#include "rockcontact/testing/json_file.hpp"
+#include "rockcontact/testing/contact2d.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // Potential contact of a pair (seed 000 §3.2, eq. 11-20) against independent references:
@@ -91,7 +91,6 @@ using rk::Vector2;
 
 namespace {
 
-using rockcontact::testing::read_json;
 using rockcontact::testing::seed_for;
 
 constexpr double u = rockcontact::testing::unit_roundoff;
@@ -357,11 +356,7 @@ BOOST_AUTO_TEST_CASE(invariant_under_translation_and_rotation) {
 // them; Float disagreements in status and IP vertex count are counted and printed.
 namespace {
 
-std::vector<Point2> points(const nlohmann::json& j) {
-  std::vector<Point2> out;
-  for (const auto& p : j) out.push_back({p.at(0).get<double>(), p.at(1).get<double>()});
-  return out;
-}
+std::vector<Point2> points(const nlohmann::json& j) { return rockcontact::testing::json_points(j); }
 
 struct ReferencePair {
   std::string id;
@@ -374,21 +369,14 @@ struct ReferenceData {
   std::vector<ReferencePair> pairs;
 };
 
+// The contact2d pairs as validated polygons.
 const ReferenceData& reference_data() {
   static const ReferenceData data = [] {
-    const std::string dir = std::string(ROCKCONTACT_TESTDATA_DIR) + "/contact2d";
-    const nlohmann::json input = read_json(dir + "/pairs.json");
-    const nlohmann::json expected = read_json(dir + "/expected.json");
-    BOOST_TEST_REQUIRE(expected.at("demarcation").get<std::string>() == "exact");
-    const auto& results = expected.at("results");
-    BOOST_TEST_REQUIRE(input.at("pairs").size() == results.size());
-    ReferenceData d{input.at("kn").get<double>(), input.at("H").get<double>(), {}};
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const auto& pair = input.at("pairs").at(i);
-      const std::string id = pair.at("id").get<std::string>();
-      BOOST_TEST_REQUIRE(results.at(i).at("id").get<std::string>() == id);
-      d.pairs.push_back({id, ConvexPolygon::make(id + ".cp", points(pair.at("cp"))),
-                         ConvexPolygon::make(id + ".tp", points(pair.at("tp"))), results.at(i)});
+    const rockcontact::testing::Contact2dData& raw = rockcontact::testing::contact2d_data();
+    ReferenceData d{raw.kn, raw.H, {}};
+    for (const auto& pair : raw.pairs) {
+      d.pairs.push_back({pair.id, ConvexPolygon::make(pair.id + ".cp", pair.cp),
+                         ConvexPolygon::make(pair.id + ".tp", pair.tp), pair.expected});
     }
     return d;
   }();
