@@ -356,8 +356,6 @@ BOOST_AUTO_TEST_CASE(invariant_under_translation_and_rotation) {
 // them; Float disagreements in status and IP vertex count are counted and printed.
 namespace {
 
-std::vector<Point2> points(const nlohmann::json& j) { return rockcontact::testing::json_points(j); }
-
 struct ReferencePair {
   std::string id;
   ConvexPolygon cp, tp;
@@ -394,7 +392,7 @@ BOOST_AUTO_TEST_CASE(contact2d_reference_data) {
     const nlohmann::json& e = ref.expected;
     const double size = e.at("size").get<double>();
     const std::string status = e.at("status").get<std::string>();
-    const std::vector<Point2> ip = points(e.at("ip"));
+    const std::vector<Point2> ip = rockcontact::testing::json_points(e.at("ip"));
     const Vector2 force{e.at("force").at(0).get<double>(), e.at("force").at(1).get<double>()};
     std::optional<Point2> point;
     if (!e.at("point").is_null()) point = Point2{e.at("point").at(0).get<double>(), e.at("point").at(1).get<double>()};
