@@ -53,7 +53,8 @@ module rockcontact
   end type
 
   public :: rockcontact_default_params, rockcontact_evaluator_create, &
-            rockcontact_evaluator_destroy, rockcontact_evaluate_pair, rockcontact_last_error, &
+            rockcontact_evaluator_destroy, rockcontact_evaluate_pair, &
+            rockcontact_intersection_polygon, rockcontact_last_error, &
             rockcontact_version
 
   interface
@@ -82,6 +83,16 @@ module rockcontact
       real(c_double), intent(in) :: a_xy(*), a_pose(3), b_xy(*), b_pose(3)
       integer(c_int32_t), value :: a_count, b_count
       type(rockcontact_pair_result), intent(out) :: result
+      integer(c_int) :: code
+    end function
+
+    function rockcontact_intersection_polygon(evaluator, xy, capacity, count) result(code) &
+        bind(C, name="rockcontact_intersection_polygon")
+      import :: c_ptr, c_int, c_int32_t, c_double
+      type(c_ptr), value :: evaluator
+      real(c_double), intent(out) :: xy(*)
+      integer(c_int32_t), value :: capacity
+      integer(c_int32_t), intent(out) :: count
       integer(c_int) :: code
     end function
 

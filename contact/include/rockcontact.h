@@ -105,6 +105,14 @@ rockcontact_error rockcontact_evaluate_pair(rockcontact_evaluator* evaluator,
                                             int32_t b_count, const double* b_pose,
                                             rockcontact_pair_result* result);
 
+/* The intersection polygon of the evaluator's last successful rockcontact_evaluate_pair (m,
+ * world frame, counter-clockwise; no vertex unless it said ROCKCONTACT_OVERLAP). Sets *count to
+ * the number of vertices and, when it is at most `capacity`, writes x0, y0, x1, y1, ... into xy
+ * (2 * capacity doubles); otherwise writes nothing to xy and fails with INVALID_ARGUMENT, so a
+ * caller can ask with capacity 0 first. xy may be null when capacity is 0. */
+rockcontact_error rockcontact_intersection_polygon(const rockcontact_evaluator* evaluator,
+                                                   double* xy, int32_t capacity, int32_t* count);
+
 /* The message of the last failed call on this thread ("" if none): NUL-terminated, valid
  * until the next call into the library on this thread. */
 const char* rockcontact_last_error(void);

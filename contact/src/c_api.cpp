@@ -143,6 +143,26 @@ rockcontact_error rockcontact_evaluate_pair(rockcontact_evaluator* evaluator, co
   }
 }
 
+rockcontact_error rockcontact_intersection_polygon(const rockcontact_evaluator* evaluator,
+                                                   double* xy, int32_t capacity, int32_t* count) {
+  last_error.clear();
+  if (evaluator == nullptr || count == nullptr || (xy == nullptr && capacity > 0)) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_intersection_polygon: null argument");
+  }
+  const std::span<const rockcontact::kernel::Point2> ip = evaluator->pairs.intersection_polygon();
+  *count = static_cast<int32_t>(ip.size());
+  if (*count > capacity) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT,
+                "rockcontact_intersection_polygon: the polygon has " + std::to_string(*count) +
+                    " vertices, capacity is " + std::to_string(capacity));
+  }
+  for (std::size_t k = 0; k < ip.size(); ++k) {
+    xy[2 * k] = ip[k].x;
+    xy[2 * k + 1] = ip[k].y;
+  }
+  return ROCKCONTACT_OK;
+}
+
 const char* rockcontact_last_error(void) { return last_error.c_str(); }
 
 const char* rockcontact_error_string(rockcontact_error code) {

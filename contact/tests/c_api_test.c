@@ -2,7 +2,7 @@
  * potential_contact_test.cpp through posed local rectangles (CP = [0,2]x[0,1],
  * TP = [1.25,4]x[0.25,2]: f = kn/H (-1/2, -7/16), contact point (369/226, 557/904), IP area
  * 9/16, penetration 0.75, all to 1e-12 relative: the inputs are dyadic, so only the
- * integration rounds), the identity pose, and every error path: the code, and a message that
+ * integration rounds; the IP's corners exactly), the identity pose, and every error path: the code, and a message that
  * names what was wrong. Exit status 0 when every check passes. */
 #include <math.h>
 #include <stdio.h>
@@ -58,6 +58,22 @@ int main(void) {
           "corner: point (369/226, 557/904)");
     check(close_to(r.penetration, 0.75), "corner: penetration 0.75");
     check(r.predicates > 0 && r.fallbacks >= 0, "corner: predicate counts");
+    {
+      /* The IP is [1.25, 2] x [0.25, 1]: four corners, CCW, in some rotation. */
+      double ip[8] = {0};
+      int32_t count = -1;
+      int k, found = 0;
+      check(rockcontact_intersection_polygon(contact, NULL, 0, &count) ==
+                    ROCKCONTACT_ERROR_INVALID_ARGUMENT && count == 4,
+            "corner: IP size asked with capacity 0");
+      check(rockcontact_intersection_polygon(contact, ip, 4, &count) == ROCKCONTACT_OK && count == 4,
+            "corner: IP vertices");
+      for (k = 0; k < 4; ++k) {
+        found += (ip[2 * k] == 1.25 || ip[2 * k] == 2.0) && (ip[2 * k + 1] == 0.25 || ip[2 * k + 1] == 1.0);
+      }
+      check(found == 4 && (ip[2] - ip[0]) * (ip[5] - ip[1]) - (ip[3] - ip[1]) * (ip[4] - ip[0]) > 0.0,
+            "corner: IP = [1.25, 2] x [0.25, 1], counter-clockwise");
+    }
     rockcontact_evaluator_destroy(contact);
     contact = NULL;
   }

@@ -1,8 +1,8 @@
 ! The C API from Fortran through the iso_c_binding module rockcontact.f90: the closed form
 ! "corner" of potential_contact_test.cpp (CP = [0,2]x[0,1], TP = [1.25,4]x[0.25,2]: force
 ! kn/H (-1/2, -7/16), contact point (369/226, 557/904), IP area 9/16, penetration 0.75; 1e-12
-! relative, since the dyadic inputs leave only the integration's roundings) under every policy,
-! and a refused clockwise polygon with its message. Stops with a non-zero code on a failure.
+! relative, since the dyadic inputs leave only the integration's roundings) and its intersection
+! polygon under every policy, and a refused clockwise polygon with its message. Stops with a non-zero code on a failure.
 program c_api_test
   use, intrinsic :: iso_c_binding, only: c_ptr, c_double, c_int, c_int32_t
   use rockcontact
@@ -22,7 +22,8 @@ program c_api_test
   type(rockcontact_params) :: params
   type(rockcontact_pair_result) :: r
   type(c_ptr) :: contact
-  integer(c_int32_t) :: policy
+  integer(c_int32_t) :: policy, ip_count
+  real(c_double) :: ip(8)
   integer :: failures = 0
   real(c_double) :: scale
 
@@ -46,6 +47,11 @@ program c_api_test
     call check(close_to(r%point(1), 369.0_c_double / 226.0_c_double) .and. &
                close_to(r%point(2), 557.0_c_double / 904.0_c_double), 'corner: point')
     call check(close_to(r%penetration, 0.75_c_double), 'corner: penetration 0.75')
+    call check(rockcontact_intersection_polygon(contact, ip, 4_c_int32_t, ip_count) == ROCKCONTACT_OK &
+               .and. ip_count == 4, 'corner: IP of 4 vertices')
+    call check(all(ip(1::2) == 1.25_c_double .or. ip(1::2) == 2.0_c_double) .and. &
+               all(ip(2::2) == 0.25_c_double .or. ip(2::2) == 1.0_c_double), &
+               'corner: IP = [1.25, 2] x [0.25, 1]')
     if (policy == ROCKCONTACT_POLICY_FILTERED) then
       call check(rockcontact_evaluate_pair(contact, clockwise, 4_c_int32_t, a_pose, b_xy, &
                                            4_c_int32_t, b_pose, r) == ROCKCONTACT_ERROR_INVALID_POLYGON, &
