@@ -97,8 +97,8 @@ class PairEvaluator {
   PairContact evaluate(std::span<const double> a_xy, const Pose2& a_pose,
                        std::span<const double> b_xy, const Pose2& b_pose);
 
-  // The intersection polygon of the last evaluate() (m, world frame, CCW); empty unless it
-  // said overlap. Valid until the next evaluate().
+  // The intersection polygon of the last evaluate() that returned (m, world frame, CCW); empty
+  // unless it said overlap. A refused call leaves it as it was. Valid until the next evaluate().
   std::span<const kernel::Point2> intersection_polygon() const noexcept;
 
   const PairContactParams& params() const noexcept;
