@@ -8,7 +8,7 @@
 //                                evaluate_pair does before its force)
 //   force_exact/<policy>/<pool>  contact::evaluate_pair, exact demarcation
 //   force_paper/<policy>/<pool>  contact::evaluate_pair, paper demarcation
-//   naive_clip/<pool>            double Sutherland-Hodgman: TP clipped by CP's edge half-planes;
+//   naive_clip/<pool>            examples/naive_clipper/naive_clip.hpp: TP clipped by CP's edge half-planes;
 //                                no filter, no symbolic vertices (the naive reference)
 //   box2d_manifold/3-8           b2CollidePolygons (Box2D 2.4, float): the contact manifold
 //   cgal_intersection/<pool>     CGAL::intersection of two Polygon_2, Epeck kernel
@@ -59,6 +59,7 @@
 #include "rockcontact/kernel/intersection_polygon.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 #include "rockcontact/kernel/point.hpp"
+#include "naive_clip.hpp"
 #include "run_passes.hpp"
 
 namespace {
@@ -165,34 +166,6 @@ Pool make_pool(std::string name, int max_vertices) {
   return pool;
 }
 
-// Sutherland-Hodgman in plain double: `subject` clipped by each edge half-plane of the CCW
-// polygon `clip`. A point on a clipping line counts as inside; nothing is certified.
-void naive_clip(std::span<const rk::Point2> clip, std::span<const rk::Point2> subject,
-                std::vector<rk::Point2>& out, std::vector<rk::Point2>& scratch) {
-  out.assign(subject.begin(), subject.end());
-  for (std::size_t i = 0; i < clip.size() && !out.empty(); ++i) {
-    const rk::Point2 a = clip[i];
-    const rk::Point2 b = clip[i + 1 == clip.size() ? 0 : i + 1];
-    const auto side = [&](const rk::Point2& p) {
-      return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-    };
-    scratch.clear();
-    rk::Point2 p = out.back();
-    double sp = side(p);
-    for (const rk::Point2& q : out) {
-      const double sq = side(q);
-      if ((sp >= 0.0) != (sq >= 0.0)) {
-        const double t = sp / (sp - sq);
-        scratch.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
-      }
-      if (sq >= 0.0) scratch.push_back(q);
-      p = q;
-      sp = sq;
-    }
-    std::swap(out, scratch);
-  }
-}
-
 template <rk::NumberPolicy Policy>
 void classify(benchmark::State& state, const Pool& pool) {
   run_passes(state, pool_size, [&](std::size_t i) {
@@ -230,7 +203,7 @@ void force(benchmark::State& state, const Pool& pool, rk::Demarcation demarcatio
 void naive(benchmark::State& state, const Pool& pool) {
   std::vector<rk::Point2> out, scratch;
   run_passes(state, pool_size, [&](std::size_t i) {
-    naive_clip(pool.cp[i].vertices(), pool.tp[i].vertices(), out, scratch);
+    naive::clip_polygon(pool.cp[i].vertices(), pool.tp[i].vertices(), out, scratch);
     benchmark::DoNotOptimize(out.data());
   });
 }

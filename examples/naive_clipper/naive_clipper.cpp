@@ -28,6 +28,8 @@
 #include <utility>
 #include <vector>
 
+#include "naive_clip.hpp"
+
 namespace {
 
 using nlohmann::json;
@@ -38,34 +40,6 @@ struct Point {
   double y;
 };
 using Polygon = std::vector<Point>;
-
-// > 0 when p is left of the line a -> b.
-double side(const Point& a, const Point& b, const Point& p) {
-  return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
-
-// Sutherland-Hodgman: `subject` clipped by every edge half-plane of the CCW polygon `clip`.
-Polygon clip_polygon(const Polygon& clip, Polygon subject) {
-  for (std::size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
-    const Point& a = clip[i];
-    const Point& b = clip[(i + 1) % clip.size()];
-    Polygon kept;
-    Point p = subject.back();
-    double sp = side(a, b, p);
-    for (const Point& q : subject) {
-      const double sq = side(a, b, q);
-      if ((sp >= 0.0) != (sq >= 0.0)) {
-        const double t = sp / (sp - sq);
-        kept.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
-      }
-      if (sq >= 0.0) kept.push_back(q);
-      p = q;
-      sp = sq;
-    }
-    subject = std::move(kept);
-  }
-  return subject;
-}
 
 double shoelace_area(const Polygon& polygon) {
   double twice = 0.0;
@@ -84,7 +58,9 @@ Polygon read_polygon(const json& value) {
 }
 
 ordered_json pair_result(const json& pair) {
-  const Polygon clipped = clip_polygon(read_polygon(pair.at("cp")), read_polygon(pair.at("tp")));
+  const Polygon cp = read_polygon(pair.at("cp")), tp = read_polygon(pair.at("tp"));
+  Polygon clipped, scratch;
+  naive::clip_polygon<Point>(cp, tp, clipped, scratch);
   const double area = shoelace_area(clipped);
   const bool overlap = clipped.size() >= 3 && area > 0.0;
   ordered_json ip = ordered_json::array();
