@@ -13,6 +13,7 @@
 #include <thread>
 #include <utility>
 
+#include "rockcontact/kernel/crossing_point.hpp"
 #include "rockcontact/kernel/entrance_block.hpp"
 #include "rockcontact/kernel/number_policy.hpp"
 
@@ -75,12 +76,17 @@ bool same_labels(const IntersectionPolygon& a, const IntersectionPolygon& b) {
 //     (the kernel's cross filter) |fl(N) - N| <= e Nbar, |fl(D) - D| <= e Dbar, where
 //     e = (3 + 16u) u and Nbar = |lx wy| + |ly wx|, Dbar = |lx dy| + |ly dx| (computed);
 //   * fl(N)/fl(D) - N/D = ((fl(N) - N) D - N (fl(D) - D)) / (fl(D) D), so with |s| <= 1 (the
-//     combinatorics put X on the TP edge) |s' - s| <= e (Nbar + Dbar) / |fl(D)| + u|s'|; the
-//     clamp of s' to [0, 1] projects onto a set containing s and cannot increase the error,
+//     combinatorics put X on the TP edge) |s' - s| <= ds = e (Nbar + Dbar) / |fl(D)| + u|s'|;
+//     the clamp of s' to [0, 1] projects onto a set containing s and cannot increase the error,
 //     which is therefore also <= 1. This is the near-parallel ill-conditioning: 1/|D|.
+//   * The kernel keeps the double crossing only when its own certificate of this bound is at
+//     most 2^-40 (crossing_point.hpp); otherwise it rounds the exact crossing, exactly as Exact
+//     does (error 0 against Exact). Either way the error of s' is at most min(ds, 2^-40), where
+//     ds is computed here independently of the kernel's certificate.
 //   * X_c = fl(t0_c + fl(s' fl(d_c))) adds |d_c| 2u (1 + u) + u |X'_c| (1 + u);
 //   * Exact rounds the exact X_c once: u |X_c| <= u |X^e_c| (1 + u).
-// Hence per coordinate c: |X'_c - X^e_c| <= (|d_c| (ds + 2u) + u (|X'_c| + |X^e_c|)) (1 + 2u).
+// Hence per coordinate c:
+//   |X'_c - X^e_c| <= (|d_c| (min(ds, 2^-40) + 2u) + u (|X'_c| + |X^e_c|)) (1 + 2u).
 CrossingBound crossing_bound(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpVertex& v,
                              const Point2& filtered, const Point2& exact) {
   const Point2& p = cp[v.cp];
@@ -93,7 +99,8 @@ CrossingBound crossing_bound(const ConvexPolygon& cp, const ConvexPolygon& tp, c
   const double d_bar = std::fabs(lx * dy) + std::fabs(ly * dx);
   const double d = lx * dy - ly * dx;
   const double e = (3.0 + 16.0 * u) * u;
-  const double ds = d == 0.0 ? 1.0 : std::min(1.0, e * (n_bar + d_bar) / std::fabs(d) + u);
+  const double ds_formula = d == 0.0 ? 1.0 : std::min(1.0, e * (n_bar + d_bar) / std::fabs(d) + u);
+  const double ds = std::min(ds_formula, rk::crossing_parameter_tolerance * bound_slack);
   const auto coordinate = [&](double dc, double xf, double xe) {
     return (std::fabs(dc) * (ds + 2.0 * u) + u * (std::fabs(xf) + std::fabs(xe))) * (1.0 + 2.0 * u) *
            bound_slack;
@@ -102,44 +109,57 @@ CrossingBound crossing_bound(const ConvexPolygon& cp, const ConvexPolygon& tp, c
 }
 
 // ## Bound on the force (evaluate_pair under Filtered vs Exact)
-//   |f_filtered - f_exact| <= (kn/H) (32 u S (S + R) + 4 sum_k delta_k^2)   per component,
-// S the larger diameter of cp and tp, R the largest coordinate magnitude of the IP (m), and
-// delta_k = |crossing_bound| of IP crossing k (m). The combinatorics are identical (checked),
-// so the two computations differ only by rounding. Two effects:
-//   * First order, everywhere: IP vertices are off their exact positions by ~u R across the IP
-//     edges through them (coordinates of magnitude R rounded); each value g = d_CP - d_TP (cross
-//     products of differences of coordinates of size R and lengths <= S, divided by an edge
-//     length) is off by <= ~4u (R + S); f = (kn/H) sum_e G_e (dy, -dx), G_e = int g over IP
-//     edge e, sums them over the IP boundary (perimeter <= pi S), and the normals (dy, -dx) are
-//     off by u R each with |g| <= S: together <= ~2 (4 pi + 2) u (kn/H) S (S + R), under 32.
-//     A relative term is not needed: |f| <= 2 (kn/H) area(IP) <= (kn/H) S^2, so u |f| is
-//     inside it.
-//   * Second order, near-parallel crossings: crossing k can slide along its TP edge by up to
-//     delta_k ~ u L / sin(angle) (crossing_bound), and when the exact crossing is closer than
-//     that to the end of the CP edge, the slid vertex leaves CP. There d_CP is negative, of
-//     size <= delta_k (distance is 1-Lipschitz), on a piece of length <= delta_k of each of the
-//     two IP edges at that vertex: each G_e L_e moves by <= 2 delta_k^2 (g is 2-Lipschitz).
-//     Inside both polygons the slide changes g only at the rate the near-parallel edges part,
-//     sin(angle), i.e. by ~u L: the first-order term. Seen on near_parallel slivers: a 5e-13 m^2
-//     IP whose Filtered force has the wrong sign, off by 1e-12 (kn/H) m^2 (delta ~ 2e-6 m).
-// The campaign reports the worst observed ratio error / bound per family (0.022 at most over
-// 10^6 cases):
-// the bound is not loose by many orders of magnitude, and not tight enough to flake.
+//   |f_filtered - f_exact| <= (kn/H) (32 u S (S + R) + 2 sum_k delta_k (L_k-1 + L_k + 2 Delta))
+// per component, S the larger diameter of cp and tp, R the largest coordinate magnitude of the
+// IP (m), delta_k = |crossing_bound| of IP vertex k (m; 0 for input vertices), L_k-1 and L_k the
+// lengths of the two exact IP edges at vertex k, Delta = sum_k delta_k. The combinatorics are
+// identical (checked), so the two computations differ only by rounding:
+//   * At fixed vertices: every value g = d_CP - d_TP (cross products of differences of
+//     coordinates of size R and lengths <= S, divided by an edge length) is off by
+//     <= ~4u (R + S); f = (kn/H) sum_e G_e (dy, -dx), G_e = int g over IP edge e, sums them over
+//     the IP boundary (perimeter <= pi S), and the normals (dy, -dx) are off by u R each with
+//     |g| <= S: together <= ~2 (4 pi + 2) u (kn/H) S (S + R), under 32. A relative term is not
+//     needed: |f| <= 2 (kn/H) area(IP) <= (kn/H) S^2, so u |f| is inside it.
+//   * Moved vertices: by the divergence theorem f = (kn/H) int_IP grad g dA, and Filtered
+//     integrates the same Lipschitz function (g with each distance clamped at 0, equal to g on
+//     the exact IP, |grad| <= 2 per component) over the polygon of its constructed vertices.
+//     Moving vertex k by delta_k sweeps two triangles of area <= delta_k L / 2 each, L the
+//     adjacent edge lengths (grown by at most Delta by the other moves): the area integrals
+//     differ by <= sum_k delta_k (L_k-1 + L_k + 2 Delta). The clamp adds a kink the
+//     demarcation does not know where a moved vertex left a polygon: there the clamped
+//     distance is <= delta_k on at most the two adjacent edges, so the trapezoid rule is off by
+//     no more than the same sum again. This is first order in delta_k: a crossing that slides
+//     along its TP edge off the line of the next IP edge cuts a triangle off the IP (the
+//     rotated pair 384916 of seed 20261124, swapped, lost 7.6e-6 m^2 that way before
+//     crossings were certified to 2^-40).
+// The campaign reports the worst observed ratio error / bound per family: the bound is not
+// loose by many orders of magnitude, and not tight enough to flake.
 double force_bound(const ConvexPolygon& cp, const ConvexPolygon& tp, const IntersectionPolygon& ip,
                    std::span<const Point2> filtered, std::span<const Point2> exact,
                    const PotentialContactParams& params) {
   constexpr double first_order_factor = 32.0;
-  constexpr double sliding_factor = 4.0;
-  double r = 0.0, sliding = 0.0;
-  for (std::size_t k = 0; k < ip.vertices.size(); ++k) {
+  const std::size_t n = ip.vertices.size();
+  std::vector<double> delta(n, 0.0);
+  double r = 0.0, total_delta = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
     r = std::max({r, std::fabs(exact[k].x), std::fabs(exact[k].y)});
     if (ip.vertices[k].kind != IpVertex::Kind::crossing) continue;
     const CrossingBound b = crossing_bound(cp, tp, ip.vertices[k], filtered[k], exact[k]);
-    sliding += b.x * b.x + b.y * b.y;
+    delta[k] = std::hypot(b.x, b.y);
+    total_delta += delta[k];
+  }
+  const auto edge_length = [&](std::size_t k) {  // exact IP edge from vertex k to k + 1
+    const Point2 &a = exact[k], &b = exact[k + 1 == n ? 0 : k + 1];
+    return std::hypot(b.x - a.x, b.y - a.y);
+  };
+  double moved = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (delta[k] == 0.0) continue;
+    moved += delta[k] * (edge_length(k == 0 ? n - 1 : k - 1) + edge_length(k) + 2.0 * total_delta);
   }
   const double s = std::max(diameter(cp.vertices()), diameter(tp.vertices()));
-  return (params.kn / params.H) * (first_order_factor * u * s * (s + r) + sliding_factor * sliding) *
-         bound_slack;
+  return (params.kn / params.H) * (first_order_factor * u * s * (s + r) + 2.0 * moved) * bound_slack *
+         (1.0 + 4.0 * u);
 }
 
 std::string_view to_string(Property property) {

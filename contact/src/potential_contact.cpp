@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rockcontact/kernel/crossing_point.hpp"
 #include "rockcontact/kernel/detail/exact_number.hpp"
 #include "rockcontact/kernel/detail/potential_impl.hpp"
 #include "rockcontact/kernel/predicate_stats.hpp"
@@ -20,23 +21,30 @@ using kernel::IpVertex;
 template <class FT>
 using Pt = kd::PointT<FT>;
 
-template <class FT>
+// An IP vertex's coordinates: exact rationals under Exact, else the Policy's double crossing
+// (under Filtered certified to ~2^-40 of the edge, crossing_point.hpp).
+template <kernel::NumberPolicy Policy, class FT>
 Pt<FT> vertex_point(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpVertex& v) {
   switch (v.kind) {
     case IpVertex::Kind::cp_vertex: return kd::lift<FT>(cp[v.cp]);
     case IpVertex::Kind::tp_vertex: return kd::lift<FT>(tp[v.tp]);
     case IpVertex::Kind::crossing: break;
   }
-  return kd::construct_crossing<FT>(cp[v.cp], cp[cp.next(v.cp)], tp[v.tp], tp[tp.next(v.tp)]);
+  const Point2 &p = cp[v.cp], &q = cp[cp.next(v.cp)], &t0 = tp[v.tp], &t1 = tp[tp.next(v.tp)];
+  if constexpr (std::is_same_v<FT, double>) {
+    return kd::lift<FT>(kernel::construct_crossing_point<Policy>(p, q, t0, t1));
+  } else {
+    return kd::construct_crossing<FT>(p, q, t0, t1);
+  }
 }
 
 // The demarcation parameters of `poly` on segment p -> q, appended to t.
-template <class FT>
+template <kernel::NumberPolicy Policy, class FT>
 void add_demarcation(const ConvexPolygon& poly, const Pt<FT>& p, const Pt<FT>& q,
-                     const kd::LinearPieces<FT>& distance, const PotentialContactParams& params,
+                     kd::LinearPieces<FT>& distance, const PotentialContactParams& params,
                      std::vector<FT>& t) {
   if (params.demarcation == Demarcation::exact) {
-    kd::envelope_breakpoints(distance, t);
+    kd::envelope_breakpoints<Policy>(distance, t);
   } else {
     kd::paper_breakpoints(poly, p, q, params.small_edge_fraction * params.H, t);
   }
@@ -54,7 +62,7 @@ struct EdgeIntegral {
   Pt<FT> m;
 };
 
-template <class FT>
+template <kernel::NumberPolicy Policy, class FT>
 EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpEdge& edge,
                                 const Pt<FT>& p, const Pt<FT>& q, const Pt<FT>& c,
                                 const PotentialContactParams& params, kd::ForceScratch<FT>& s) {
@@ -66,11 +74,11 @@ EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp
   s.t.push_back(FT(1));
   if (!cp_zero) {
     kd::edge_distance_functions(cp, p, q, s.cp_distance);
-    add_demarcation(cp, p, q, s.cp_distance, params, s.t);
+    add_demarcation<Policy>(cp, p, q, s.cp_distance, params, s.t);
   }
   if (!tp_zero) {
     kd::edge_distance_functions(tp, p, q, s.tp_distance);
-    add_demarcation(tp, p, q, s.tp_distance, params, s.t);
+    add_demarcation<Policy>(tp, p, q, s.tp_distance, params, s.t);
   }
   std::sort(s.t.begin(), s.t.end());
   s.t.erase(std::unique(s.t.begin(), s.t.end()), s.t.end());
@@ -108,7 +116,7 @@ EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp
 }
 
 // Force, area and contact point from the symbolic IP, all in FT, each rounded once.
-template <class FT>
+template <kernel::NumberPolicy Policy, class FT>
 void integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
                      const PotentialContactParams& params, kd::ForceScratch<FT>& scratch,
                      PairResult& out) {
@@ -116,7 +124,7 @@ void integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
   const auto& ip = out.ip_features;
   std::vector<Pt<FT>>& v = scratch.vertices;
   v.clear();
-  for (const IpVertex& iv : ip.vertices) v.push_back(vertex_point<FT>(cp, tp, iv));
+  for (const IpVertex& iv : ip.vertices) v.push_back(vertex_point<Policy, FT>(cp, tp, iv));
   const kd::AreaCentroid<FT> ac = kd::area_centroid<FT>(v);
   const Pt<FT>& c = ac.centroid;
 
@@ -126,7 +134,7 @@ void integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
   for (std::size_t k = 0; k < v.size(); ++k) {
     const Pt<FT>& p = v[k];
     const Pt<FT>& q = v[k + 1 == v.size() ? 0 : k + 1];
-    const EdgeIntegral<FT> e = integrate_edge(cp, tp, ip.edges[k], p, q, c, params, scratch);
+    const EdgeIntegral<FT> e = integrate_edge<Policy>(cp, tp, ip.edges[k], p, q, c, params, scratch);
     const FT nx = q.y - p.y, ny = p.x - q.x;
     fx += e.G * nx;
     fy += e.G * ny;
@@ -188,9 +196,9 @@ void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
     if (!out.ip_features.empty()) {
       if constexpr (Policy::kind == kernel::PolicyKind::exact) {
         kd::ForceScratch<mpq_class> scratch;
-        integrate_force(cp, tp, params, scratch, out);
+        integrate_force<Policy>(cp, tp, params, scratch, out);
       } else {
-        integrate_force(cp, tp, params, workspace.force, out);
+        integrate_force<Policy>(cp, tp, params, workspace.force, out);
       }
     }
   }

@@ -67,6 +67,7 @@
 // a corner bisector. So f_paper = f + (1/32, 0) = (-15/32, 11/16).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -568,6 +569,136 @@ BOOST_AUTO_TEST_CASE(sliver_overlap_thinner_than_rounding_stays_finite) {
       }
     }
   }
+}
+
+// (g) Two pairs on which Filtered once disagreed with Exact (10^7-case campaign, seed 20261124),
+// checked in both role orders against an independent oracle: the area form of eq. 11,
+//   f = (kn/H) ∫_IP (∇d_CP - ∇d_TP) dA,
+// where ∇d of a convex polygon is the inward unit normal of the nearest edge line, constant on
+// the region {x : d_k(x) <= d_j(x) for all j} of edge k (a convex polygon: IP clipped by the
+// bisector half-planes). So f = (kn/H) Σ_k |IP ∩ V_k^CP| ν_k - Σ_j |IP ∩ V_j^TP| ν_j, computed
+// here by clipping in double: no demarcation, no envelope, no crossing construction of the
+// kernel. Each region's area is a continuous function of its half-planes, so rounding moves it
+// by a few ulps of the IP's area (~1e-16 m^2 here); the tolerance 1e-9 (kn/H) area(IP) is far
+// above that and far below what the two faults cost (4e-2 and 3e-4 of the force).
+//   lattice_touch 394832: lattice polygons (step 1/8 m) whose edge-distance lines meet three at
+//     a time; the exact demarcation's envelope walk took a wrong line at such a point under
+//     Filtered and Float: force (-1957838.93, -1586494.31) instead of (-2041520.22,
+//     -1598448.78) N/m.
+//   rotated 384916, swapped: the IP is cp itself, but cp's first edge lies along a tp edge to
+//     within rounding, so its vertex 1 is the IP vertex "crossing of cp edge 0 with tp edge 2";
+//     built in double that near-parallel crossing slid 3e-5 m along the tp edge and the IP lost
+//     7.6e-6 m^2 (area 0.167258029 instead of 0.167265615).
+namespace {
+
+using Polygon = std::vector<Point2>;
+
+// The part of `poly` where a x + b y + c >= 0 (Sutherland-Hodgman, one half-plane).
+Polygon clip_half_plane(const Polygon& poly, double a, double b, double c) {
+  Polygon out;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Point2& p = poly[k];
+    const Point2& q = poly[(k + 1) % poly.size()];
+    const double fp = a * p.x + b * p.y + c, fq = a * q.x + b * q.y + c;
+    if (fp >= 0) out.push_back(p);
+    if ((fp > 0 && fq < 0) || (fp < 0 && fq > 0)) {
+      const double t = fp / (fp - fq);
+      out.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
+    }
+  }
+  return out;
+}
+
+double shoelace_area(const Polygon& poly) {
+  double twice = 0;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Point2& p = poly[k];
+    const Point2& q = poly[(k + 1) % poly.size()];
+    twice += p.x * q.y - p.y * q.x;
+  }
+  return twice / 2;
+}
+
+// Σ_k |region ∩ V_k| ν_k over the edges k of `poly` (ν_k its inward unit normal).
+Vector2 nearest_edge_normal_integral(const ConvexPolygon& poly, const Polygon& region) {
+  const std::size_t n = poly.size();
+  std::vector<std::array<double, 3>> line(n);  // d_k(x) = a x + b y + c, unit normal (a, b)
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point2 &p = poly[k], &q = poly[poly.next(k)];
+    const double len = std::hypot(q.x - p.x, q.y - p.y);
+    const double a = -(q.y - p.y) / len, b = (q.x - p.x) / len;
+    line[k] = {a, b, -(a * p.x + b * p.y)};
+  }
+  Vector2 sum;
+  for (std::size_t k = 0; k < n; ++k) {
+    Polygon cell = region;
+    for (std::size_t j = 0; j < n && !cell.empty(); ++j) {
+      if (j != k) cell = clip_half_plane(cell, line[j][0] - line[k][0], line[j][1] - line[k][1], line[j][2] - line[k][2]);
+    }
+    const double area = cell.size() >= 3 ? shoelace_area(cell) : 0.0;
+    sum.x += area * line[k][0];
+    sum.y += area * line[k][1];
+  }
+  return sum;
+}
+
+Vector2 area_form_force(const ConvexPolygon& cp, const ConvexPolygon& tp, const Polygon& ip, double kn_over_h) {
+  const Vector2 a = nearest_edge_normal_integral(cp, ip), b = nearest_edge_normal_integral(tp, ip);
+  return {kn_over_h * (a.x - b.x), kn_over_h * (a.y - b.y)};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(campaign_disagreements_match_the_area_form) {
+  struct Case {
+    std::string name;
+    Polygon cp, tp;
+    Vector2 independent;  // the campaign's independent exact value (N/m), 0 if none was printed
+  };
+  const std::vector<Case> cases{
+      {"lattice_touch_394832",
+       {{0.125, 1}, {0.125, 0.5}, {0.375, 0}, {0.875, 0.125}, {0.75, 0.5}, {0.375, 1}},
+       {{0.625, 0.25}, {1, 0.625}, {0.75, 1.125}, {0.25, 1.125}, {0.375, 0.25}},
+       {-2041520.22, -1598448.78}},
+      {"rotated_384916_swapped",
+       {{0.98381236333282418, 0.5251086276796626}, {0.98103122165498879, 0.54221165052562981},
+        {0.44247058457721161, 0.79359532052621629}, {0.1462627303319326, 0.69416141018537236},
+        {0.17652634178160839, 0.45802029989432375}},
+       {{-0.040657774262168739, 0.3858069530099727}, {0.98490767365121412, 0.4059127630904964},
+        {0.98659350501065912, 0.50800560483369539}, {0.97546893829931847, 0.57641769621756422},
+        {0.36509025584840959, 0.93798711007538649}, {-0.011580993937640088, 0.61194250590478316}},
+       {}}};
+  const double kn = 1e7, H = 1;
+  for (const Case& c : cases) {
+    for (const bool swapped : {false, true}) {
+      const ConvexPolygon cp = ConvexPolygon::make("cp", swapped ? c.tp : c.cp);
+      const ConvexPolygon tp = ConvexPolygon::make("tp", swapped ? c.cp : c.tp);
+      const rc::PairResult exact = rc::evaluate_pair(PolicyKind::exact, cp, tp, params(kn, H));
+      BOOST_TEST_REQUIRE((exact.status == Overlap::overlap));
+      const Vector2 oracle = area_form_force(cp, tp, exact.ip, kn / H);
+      const double tolerance = 1e-9 * (kn / H) * exact.area;
+      const double sign = swapped ? -1.0 : 1.0;
+      for (const PolicyKind policy : {PolicyKind::filtered, PolicyKind::exact}) {
+        BOOST_TEST_CONTEXT(c.name << (swapped ? " swapped" : "") << ", " << policy_name(policy)) {
+          const rc::PairResult r = rc::evaluate_pair(policy, cp, tp, params(kn, H));
+          BOOST_TEST(r.ip_features.vertices == exact.ip_features.vertices);
+          BOOST_TEST(std::fabs(r.area - exact.area) <= 1e-12 * exact.area);
+          BOOST_TEST(std::fabs(r.force.x - oracle.x) <= tolerance);
+          BOOST_TEST(std::fabs(r.force.y - oracle.y) <= tolerance);
+          if (c.independent.x != 0.0) {  // printed to 0.01 N/m
+            BOOST_TEST(std::fabs(r.force.x - sign * c.independent.x) <= 0.01);
+            BOOST_TEST(std::fabs(r.force.y - sign * c.independent.y) <= 0.01);
+          }
+        }
+      }
+    }
+  }
+  // The swapped rotated pair's IP is cp: its area is cp's.
+  const ConvexPolygon inner = ConvexPolygon::make("cp", cases[1].cp);
+  const ConvexPolygon outer = ConvexPolygon::make("tp", cases[1].tp);
+  const rc::PairResult r = rc::evaluate_pair(PolicyKind::filtered, inner, outer, params(kn, H));
+  Polygon inner_vertices(inner.vertices().begin(), inner.vertices().end());
+  BOOST_TEST(std::fabs(r.area - shoelace_area(inner_vertices)) <= 1e-15);
 }
 
 BOOST_AUTO_TEST_CASE(invalid_parameters_throw) {

@@ -3,8 +3,7 @@
 #include <cassert>
 #include <type_traits>
 
-#include "rockcontact/kernel/detail/constructions.hpp"
-#include "rockcontact/kernel/detail/exact_number.hpp"
+#include "rockcontact/kernel/crossing_point.hpp"
 #include "rockcontact/kernel/predicates.hpp"
 
 namespace rockcontact::kernel {
@@ -139,15 +138,14 @@ IntersectionPolygon compute_intersection_polygon(const ConvexPolygon& cp, const 
 template <NumberPolicy Policy>
 void construct_points(const ConvexPolygon& cp, const ConvexPolygon& tp,
                       const IntersectionPolygon& ip, std::vector<Point2>& out) {
-  using FT = detail::ConstructionType<Policy>;
   out.clear();
   for (const IpVertex& v : ip.vertices) {
     switch (v.kind) {
       case IpVertex::Kind::cp_vertex: out.push_back(cp[v.cp]); break;
       case IpVertex::Kind::tp_vertex: out.push_back(tp[v.tp]); break;
       case IpVertex::Kind::crossing:
-        out.push_back(detail::round(detail::construct_crossing<FT>(
-            cp[v.cp], cp[cp.next(v.cp)], tp[v.tp], tp[tp.next(v.tp)])));
+        out.push_back(construct_crossing_point<Policy>(cp[v.cp], cp[cp.next(v.cp)], tp[v.tp],
+                                                       tp[tp.next(v.tp)]));
         break;
     }
   }

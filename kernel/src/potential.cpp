@@ -19,7 +19,7 @@ std::vector<double> demarcation_parameters(const ConvexPolygon& polygon, const P
   if (mode == Demarcation::exact) {
     detail::LinearPieces<double> f;
     detail::edge_distance_functions(polygon, pa, pb, f);
-    detail::envelope_breakpoints(f, t);
+    detail::envelope_breakpoints<Filtered>(f, t);
   } else {
     detail::paper_breakpoints(polygon, pa, pb, small_edge, t);
   }

@@ -264,6 +264,63 @@ BOOST_AUTO_TEST_CASE(exact_demarcation_matches_dense_sampling) {
   }
 }
 
+// Lattice polygons (vertices on (Z/8)^2) have medial-axis vertices where three or more
+// edge-distance lines meet exactly; their crossing parameters are equal in exact arithmetic
+// but round differently, and an envelope that decided on the rounded parameters took a line of
+// the wrong slope at such a point and missed the next kink (campaign seed 20261124,
+// lattice_touch pair 394832: the named chord below, a side of that pair's IP, has its triple
+// point at t = 2/9 and a kink at t = 0.6014 that went missing). Chords with lattice end points
+// (step 1/16) of random lattice polygons pass through such points often.
+namespace {
+
+std::vector<Point2> lattice_hull(std::vector<Point2> points) {  // strict, CCW; exact on this grid
+  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  const auto turn = [](const Point2& o, const Point2& a, const Point2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<Point2> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k > 0 ? k - 1 : 0);
+  return hull;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(exact_demarcation_on_lattice_polygons_with_concurrent_lines) {
+  const ConvexPolygon named = ConvexPolygon::make(
+      "lattice_touch 394832 cp", {{0.125, 1}, {0.125, 0.5}, {0.375, 0}, {0.875, 0.125}, {0.75, 0.5}, {0.375, 1}});
+  check_exact_breakpoints("lattice chord through a triple point", named, {0.26785714285714285, 1.0}, {0.375, 0.25});
+  std::mt19937_64 rng(seed_for("exact_demarcation_on_lattice_polygons_with_concurrent_lines", 20261124));
+  std::uniform_int_distribution<int> coordinate(0, 8);
+  int polygons = 0;
+  while (polygons < 60) {
+    std::vector<Point2> points;
+    for (int k = 0; k < 8; ++k) points.push_back({coordinate(rng) / 8.0, coordinate(rng) / 8.0});
+    const std::vector<Point2> hull = lattice_hull(points);
+    if (hull.size() < 3) continue;
+    const ConvexPolygon poly = ConvexPolygon::make("lattice", hull);
+    ++polygons;
+    std::uniform_int_distribution<int> fine(0, 16);
+    for (int chord = 0; chord < 4;) {
+      const Point2 a{fine(rng) / 16.0, fine(rng) / 16.0}, b{fine(rng) / 16.0, fine(rng) / 16.0};
+      if (a == b || rk::exit_distance(poly, a) < 0 || rk::exit_distance(poly, b) < 0) continue;
+      check_exact_breakpoints("lattice polygon " + std::to_string(polygons) + " chord " + std::to_string(chord), poly, a, b);
+      ++chord;
+    }
+  }
+}
+
 // Triangles: the medial axis is the three vertex bisectors up to the incentre, so the paper's
 // bisector rays (unbounded, plus the segment centre) contain every exact breakpoint; the extra
 // points only split linear pieces. With an edge shorter than small_edge the virtual node of a

@@ -389,6 +389,97 @@ BOOST_AUTO_TEST_CASE(crossing_side_filter_bounds_rederived) {
   BOOST_TEST_MESSAGE("crossing_side bounds checked on " << checked << " inputs");
 }
 
+// Every filter stage on inputs walked across its own bound. Random families rarely land near a
+// filter's threshold, which is where a wrong constant or a forgotten rounding would certify a
+// wrong sign. Here each degenerate configuration (r on the line p q, or c through the crossing
+// of a and b, both rounded; near the origin and 1e6 m from it) is moved one coordinate by k
+// ulps for k = 1..48 and by 2^j ulps for j = 6..30, so |value| / bound sweeps from below 1 to
+// far above it; every certificate issued is checked against GMP, and the test requires many
+// certificates within a factor 4 of the bound, or it has not tested the threshold at all.
+//   cross, static:      |det| > (3 + 16u) u (|left| + |right|) + 2^-1070   (predicates.hpp)
+//   cross, exact-in-double (stage 1b): its answer whenever it gives one
+//   crossing_side, semi-static:  |V| > 9u T                                  (predicates.hpp)
+//   crossing_side, running error: certain_sign(ErrorBounded)             (error_bounded.hpp)
+//   and the whole Filtered predicates.
+BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
+  Generator g(seed_for("filters_never_certify_a_wrong_sign_near_their_bounds", 20261125));
+  struct Tally {
+    int certified = 0, near_bound = 0, wrong = 0;
+    void add(bool certifies, bool right, double ratio) {
+      if (!certifies) return;
+      ++certified;
+      near_bound += ratio <= 4.0;
+      wrong += !right;
+    }
+  };
+  Tally cross_static, cross_in_double, side_semi_static, side_running, cross_whole, side_whole;
+  std::vector<int> steps;
+  for (int k = 1; k <= 48; ++k) steps.push_back(k);
+  for (int j = 6; j <= 30; ++j) steps.push_back(1 << j);
+  const auto moved = [](double x, int ulps) {
+    for (int i = 0; i < ulps && ulps <= 48; ++i) x = std::nextafter(x, HUGE_VAL);
+    if (ulps > 48) x += ulps * (std::nextafter(x, HUGE_VAL) - x);
+    return x;
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    const Point2 offset = trial % 2 == 0 ? Point2{0, 0} : Point2{1e6, -1e6};
+    const Point2 p = add(g.point(1.0), offset), q = add(g.point(1.0), offset);
+    const double t = g.uniform(-1.0, 2.0);
+    const Point2 r0{p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+    for (const int k : steps) {
+      const Point2 r{moved(r0.x, k), r0.y};
+      const Sign expected = sign(exact_cross(p, q, p, r));
+      const double ux = q.x - p.x, uy = q.y - p.y, vx = r.x - p.x, vy = r.y - p.y;
+      const double left = ux * vy, right = uy * vx, det = left - right;
+      const double bound = rkd::cross_error_factor * (std::fabs(left) + std::fabs(right)) + rkd::cross_underflow_term;
+      cross_static.add(std::fabs(det) > bound, rk::sign_of(det) == expected, std::fabs(det) / bound);
+      const auto in_double = rkd::cross_sign_exact_in_double(p, q, p, r, ux, uy, vx, vy, left, right);
+      cross_in_double.add(in_double.has_value(), in_double == expected, std::fabs(det) / bound);
+      cross_whole.add(true, rk::orientation<rk::Filtered>(p, q, r) == expected, std::fabs(det) / bound);
+    }
+    // Lines a and b through a random point X, c through X's rounding, then c.q moved.
+    const Point2 x = add(g.point(1.0), offset);
+    const auto through = [&](const Point2& point) {
+      const Point2 d = g.point(1.0);
+      return Line{{point.x - d.x, point.y - d.y}, {point.x + 0.5 * d.x, point.y + 0.5 * d.y}};
+    };
+    const Line a = through(x), b = through(x);
+    if (parallel(a, b)) continue;
+    const ExactPoint cross = exact_crossing(a, b);
+    const Line c0 = through({nearest(cross.x), nearest(cross.y)});
+    for (const int k : steps) {
+      const Line c{c0.p, {moved(c0.q.x, k), c0.q.y}};
+      const Sign expected = exact_crossing_side(a, b, c) * sign(exact_cross(a.p, a.q, b.p, b.q));
+      const auto diff = [](double x1, double y1) { return rkd::ErrorBounded::difference(x1, y1); };
+      const rkd::ErrorBounded running = rkd::crossing_side_formula<rkd::ErrorBounded>(a, b, c, diff);
+      const double ratio = std::fabs(running.value) / running.error;
+      const auto semi = rkd::crossing_side_semi_static(a, b, c);
+      side_semi_static.add(semi.has_value(), semi == expected, ratio);
+      const auto certain = rkd::certain_sign(running);
+      side_running.add(certain.has_value(), certain == expected, ratio);
+      side_whole.add(true, rkd::crossing_side_value_sign_filtered(a, b, c) == expected, ratio);
+    }
+  }
+  const auto report = [](const char* name, const Tally& t, int min_near) {
+    BOOST_TEST_INFO(name);
+    BOOST_TEST(t.wrong == 0);
+    BOOST_TEST_INFO(name << ": certificates within 4x of the bound");
+    BOOST_TEST(t.near_bound >= min_near);
+    BOOST_TEST_INFO(name << ": certificates");
+    BOOST_TEST(t.certified > 0);
+    BOOST_TEST_MESSAGE(name << ": " << t.certified << " certified, " << t.near_bound << " within 4x of the bound, "
+                            << t.wrong << " wrong");
+  };
+  report("cross static filter", cross_static, 100);
+  // Stage 1b answers only when no operation rounded, so its answers are exact values, not
+  // certificates near a bound; it must answer on some inputs (exact differences at the origin).
+  report("cross exact-in-double", cross_in_double, 0);
+  report("cross_sign Filtered", cross_whole, 100);
+  report("crossing_side semi-static", side_semi_static, 100);
+  report("crossing_side running error", side_running, 100);
+  report("crossing_side Filtered", side_whole, 100);
+}
+
 BOOST_AUTO_TEST_CASE(crossing_side_matches_exact_reference) {
   Generator g(seed_for("crossing_side_matches_exact_reference", 20240605));
   for (const auto& [name, inputs] : crossing_side_families(g, 1500)) {

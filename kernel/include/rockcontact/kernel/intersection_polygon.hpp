@@ -13,9 +13,10 @@
 //   * the result is strictly convex and CCW, with no repeated or collinear vertex;
 //   * it has at least 3 vertices exactly when the interiors of CP and TP intersect, i.e. when
 //     classify_overlap answers `overlap`; touching polygons give an empty IP.
-// Under Filtered these statements hold for the symbolic polygon; the constructed doubles are
-// each within a few ulps of the true crossing (construct_points), which can fold a
-// sub-ulp-wide sliver. The Exact policy constructs exactly and rounds each coordinate once.
+// Under Filtered these statements hold for the symbolic polygon; each constructed crossing is
+// within ~2^-40 of its TP edge's extent of the true crossing (crossing_point.hpp), which can
+// fold a sliver thinner than that. The Exact policy constructs exactly and rounds each
+// coordinate once.
 
 #include <cstdint>
 #include <vector>
@@ -70,10 +71,10 @@ void compute_intersection_polygon(const ConvexPolygon& cp, const ConvexPolygon& 
 template <NumberPolicy Policy>
 IntersectionPolygon compute_intersection_polygon(const ConvexPolygon& cp, const ConvexPolygon& tp);
 
-// Coordinates of the IP vertices (m). Crossing points: X = t_j + s (t_{j+1} - t_j) with s
-// clamped to [0, 1], so X stays on the TP edge; under Filtered each coordinate is within
-// ~4 ulps of |X| plus the ill-conditioning of near-parallel edges along the edge direction,
-// under Exact it is the exact crossing rounded once.
+// Coordinates of the IP vertices (m): input vertices copied, crossings constructed by
+// construct_crossing_point<Policy> (crossing_point.hpp: under Filtered within
+// (2^-40 + 3u) |t_{j+1} - t_j| + 2u |X| per coordinate, near-parallel ones rounded exactly;
+// under Exact the exact crossing rounded once).
 template <NumberPolicy Policy>
 void construct_points(const ConvexPolygon& cp, const ConvexPolygon& tp,
                       const IntersectionPolygon& ip, std::vector<Point2>& out);

@@ -15,6 +15,8 @@ namespace rockcontact::kernel {
 enum class PredicateKind : std::uint8_t {
   cross,          // sign of (p1 - p0) x (q1 - q0)         degree 2
   crossing_side,  // side of a line-line crossing point    degree 4
+  crossing_point, // a crossing's coordinates (crossing_point.hpp): a construction filtered like
+                  // a predicate, whose fallback constructs exactly
   count
 };
 inline constexpr std::size_t predicate_kind_count = static_cast<std::size_t>(PredicateKind::count);

@@ -35,13 +35,13 @@ FT cross(const FT& ux, const FT& uy, const FT& vx, const FT& vy) {
 }
 
 // The crossing of line (p, q) with segment (t0, t1): t0 + s (t1 - t0), s from the line's
-// implicit equation. In double s is clamped to [0, 1], which keeps the point on the segment
-// (the combinatorics already say it is there); the error of each coordinate is then a few
-// ulps of |X| plus |t1 - t0| times the relative error of s, which grows as the two lines
-// approach parallel (1 / sin of their angle). When both cross products round to zero (lines
-// parallel to within rounding) s is 0 / 0: NaN fails every comparison, so the clamp is written
-// to send it to 0, the segment's start, as good as any point of it. In mpq_class the point is
-// exact.
+// implicit equation; the plain formula (crossing_point.hpp filters it for the Filtered policy).
+// In double s is clamped to [0, 1], which keeps the point on the segment (the combinatorics
+// already say it is there); the error of each coordinate is then a few ulps of |X| plus
+// |t1 - t0| times the error of s, which grows as the two lines approach parallel (1 / sin of
+// their angle). When both cross products round to zero (lines parallel to within rounding) s
+// is 0 / 0: NaN fails every comparison, so the clamp is written to send it to 0, the segment's
+// start, as good as any point of it. In mpq_class the point is exact.
 template <class FT>
 PointT<FT> construct_crossing(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
   using Ops = NumberOps<FT>;
