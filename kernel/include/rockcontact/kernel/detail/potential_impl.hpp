@@ -9,6 +9,7 @@
 // (positive inside a CCW polygon), and d_exit(t) = min_k d_k(t), their lower envelope.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -78,13 +79,21 @@ void edge_distance_functions(const ConvexPolygon& poly, const PointT<FT>& a, con
 // that chooses the next line by the smallest rounded crossing can take a line of the wrong
 // slope there and then skip the true next line, whose crossing now seems to lie behind it,
 // following a line above the envelope and missing a kink: an O(1) error of the integral
-// (4 % of the force of lattice_touch pair 394832 of campaign seed 20261124). Here the rounded lines form a consistent envelope, and the
-// integral of the envelope of lines each within rounding of the true ones is within that
-// rounding of the true integral: a near-concurrent triple adds or drops a piece of width ~u.
+// (4 % of the force of lattice_touch pair 394832 of campaign seed 20261124). Here the rounded
+// lines form a consistent envelope, and the integral of the envelope of lines each within
+// rounding of the true ones is within that rounding of the true integral: a near-concurrent
+// triple adds or drops a piece of width ~u.
 // Lines of equal slope: only the lowest matters. Collinear dual points: the middle line
 // touches the envelope at one point and is dropped.
+//
+// Only the lines that can be lowest somewhere in [0, 1] enter the hull (most of a polygon's
+// edges are far from a given IP edge): with A the lowest line at t = 0, a steeper line is
+// above A for every t > 0; with B a line that is (to rounding) lowest at t = 1, a line of
+// smaller slope that is certainly above B at t = 1 is above it on all of [0, 1]. Both tests
+// only ever drop lines that cannot matter, so the hull of the rest is exact on [0, 1].
 template <NumberPolicy Policy, class FT>
 void envelope_breakpoints(LinearPieces<FT>& f, std::vector<FT>& out) {
+  const std::size_t n = f.alpha.size();
   const auto turn = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
     if constexpr (std::is_same_v<FT, double>) {
       return orientation<Policy>(Point2{f.beta[i], f.alpha[i]}, Point2{f.beta[j], f.alpha[j]},
@@ -94,9 +103,27 @@ void envelope_breakpoints(LinearPieces<FT>& f, std::vector<FT>& out) {
                               FT(f.beta[k] - f.beta[i]), FT(f.alpha[k] - f.alpha[i]))));
     }
   };
+  // Is line k above line b at t = 1 for certain? Exact for rationals; in double the two sums
+  // and their difference carry at most u (|s_k| + |s_b| + |d|) of error, bounded by 4u (...).
+  const auto above_at_one = [&](std::size_t k, std::size_t b) {
+    const FT sk = f.alpha[k] + f.beta[k], sb = f.alpha[b] + f.beta[b];
+    if constexpr (std::is_same_v<FT, double>) {
+      return sk - sb > 0x1p-51 * (std::fabs(sk) + std::fabs(sb));
+    } else {
+      return sk > sb;
+    }
+  };
+  std::size_t a = 0, b = 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if (f.alpha[k] < f.alpha[a] || (f.alpha[k] == f.alpha[a] && f.beta[k] < f.beta[a])) a = k;
+    if (f.alpha[k] + f.beta[k] < f.alpha[b] + f.beta[b]) b = k;
+  }
   std::vector<std::uint32_t>& order = f.order;
-  order.resize(f.alpha.size());
-  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  order.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (f.beta[k] > f.beta[a] || (f.beta[k] < f.beta[b] && above_at_one(k, b))) continue;
+    order.push_back(static_cast<std::uint32_t>(k));
+  }
   std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
     return f.beta[i] < f.beta[j] || (f.beta[i] == f.beta[j] && f.alpha[i] < f.alpha[j]);
   });
