@@ -838,6 +838,36 @@ std::optional<PolygonPair> lattice_touch_pair(Rng& rng) {
   return pair_if_valid(std::move(cp), convex_hull(std::move(points)));
 }
 
+// A lattice box of w x h steps at (i0, j0) with each corner cut by a 45° chamfer of c_k steps
+// (0 <= c_k <= min(w, h) / 2, so neighbouring cuts meet at most at an edge's midpoint). Its
+// edge directions are multiples of 45°: the distances to the diagonal edges carry 1 / sqrt(2),
+// and the medial axis has vertices where three or four edge-distance lines meet exactly.
+Polygon lattice_octagon(Rng& rng, std::int64_t i0, std::int64_t j0) {
+  const std::int64_t w = rng.integer(2, 8);
+  const std::int64_t h = rng.integer(2, 8);
+  std::array<std::int64_t, 4> c{};
+  for (std::int64_t& cut : c) cut = rng.integer(0, std::min(w, h) / 2);
+  const std::int64_t i1 = i0 + w, j1 = j0 + h;
+  return convex_hull({lattice_point(i0 + c[0], j0), lattice_point(i1 - c[1], j0), lattice_point(i1, j0 + c[1]),
+                      lattice_point(i1, j1 - c[2]), lattice_point(i1 - c[2], j1), lattice_point(i0 + c[3], j1),
+                      lattice_point(i0, j1 - c[3]), lattice_point(i0, j0 + c[0])});
+}
+
+std::optional<PolygonPair> lattice_concurrent_pair(Rng& rng) {
+  const bool cp_octagon = rng.chance(0.5);
+  Polygon cp = cp_octagon ? lattice_octagon(rng, 0, 0) : lattice_polygon(rng, 0, 0);
+  const bool tp_octagon = rng.chance(0.5);
+  const std::int64_t i0 = rng.integer(-4, 4);
+  const std::int64_t j0 = rng.integer(-4, 4);
+  Polygon tp = tp_octagon ? lattice_octagon(rng, i0, j0) : lattice_polygon(rng, i0, j0);
+  std::optional<PolygonPair> pair = pair_if_valid(std::move(cp), std::move(tp));
+  if (pair) {
+    pair->recipe = format("cp %s, tp %s at (%d, %d) steps", cp_octagon ? "octagon" : "lattice hull",
+                          tp_octagon ? "octagon" : "lattice hull", static_cast<int>(i0), static_cast<int>(j0));
+  }
+  return pair;
+}
+
 // ---- exact incidences on generic lines ------------------------------------------------------
 
 // Grid of the polygons of near_parallel_ulp and nested (m). Their random polygons lie within
@@ -924,10 +954,12 @@ std::optional<Point2> interior_point(Rng& rng, const Polygon& outer) {
   return x;
 }
 
-std::optional<PolygonPair> nested_pair(Rng& rng) {
+enum class Nesting : std::int64_t { strictly, vertex_on_edge, along_edge, shared_vertex };
+
+std::optional<PolygonPair> nested_pair(Rng& rng, Nesting nesting) {
   static constexpr std::array<const char*, 4> variant_names{
       "strictly", "touching: a vertex on an edge", "touching: along an edge", "touching: a shared vertex"};
-  const auto variant = rng.integer(0, 3);
+  const auto variant = static_cast<std::int64_t>(nesting);
   const Point2 centre = random_point(rng, 0.5);
   Polygon outer = snapped_convex(rng, centre, incidence_grid);
   if (!valid(outer)) return std::nullopt;
@@ -962,6 +994,11 @@ std::optional<PolygonPair> nested_pair(Rng& rng) {
                    variant_names[static_cast<std::size_t>(variant)];
   }
   return pair;
+}
+
+std::optional<PolygonPair> nested_pair(Rng& rng) {
+  const auto variant = rng.integer(0, 3);
+  return nested_pair(rng, static_cast<Nesting>(variant));
 }
 
 // The polygon with vertex i's x (or y) moved by one ulp, if it stays strictly convex with the
@@ -1075,8 +1112,9 @@ std::optional<PolygonPair> far_offset_pair(Rng& rng) {
   return far;
 }
 
-std::optional<PolygonPair> rotated_pair(Rng& rng) {
-  const PolygonPair base = base_pair(rng);
+// `base` turned as a whole by a random rational rotation about a random grid centre (see the
+// header's `rotated`), each polygon re-hulled; the recipe names the rotation, then the base.
+std::optional<PolygonPair> rotated_randomly(Rng& rng, const PolygonPair& base) {
   const double t = std::ldexp(static_cast<double>(rng.integer(-(1 << 16), 1 << 16)), -16);
   const bool half_turn = rng.chance(0.5);
   const double centre_x = std::ldexp(static_cast<double>(rng.integer(-256, 256)), -8);
@@ -1095,6 +1133,19 @@ std::optional<PolygonPair> rotated_pair(Rng& rng) {
                           centre.x, centre.y) + base.recipe;
   }
   return pair;
+}
+
+std::optional<PolygonPair> rotated_pair(Rng& rng) { return rotated_randomly(rng, base_pair(rng)); }
+
+// Nested polygons touching along an edge (3/4) or at an inner vertex on an outer edge, the
+// inner one as cp or tp, turned by a rational rotation: the inner edge lies along the outer
+// one to within rounding, so crossings of those two edges' lines are as ill-conditioned as
+// crossings get, and one of them sits on an inner vertex.
+std::optional<PolygonPair> nested_rotated_pair(Rng& rng) {
+  const Nesting nesting = rng.chance(0.75) ? Nesting::along_edge : Nesting::vertex_on_edge;
+  const std::optional<PolygonPair> base = nested_pair(rng, nesting);
+  if (!base) return std::nullopt;
+  return rotated_randomly(rng, *base);
 }
 
 std::optional<PolygonPair> generate_once(Family family, Rng& rng) {
@@ -1117,6 +1168,8 @@ std::optional<PolygonPair> generate_once(Family family, Rng& rng) {
     case Family::identical: return identical_pair(rng);
     case Family::offset_1e9: return far_offset_pair(rng);
     case Family::rotated: return rotated_pair(rng);
+    case Family::lattice_concurrent: return lattice_concurrent_pair(rng);
+    case Family::nested_rotated: return nested_rotated_pair(rng);
   }
   generator_bug("unknown family");
 }
@@ -1156,6 +1209,8 @@ std::string_view to_string(Family family) {
     case Family::identical: return "identical";
     case Family::offset_1e9: return "offset_1e9";
     case Family::rotated: return "rotated";
+    case Family::lattice_concurrent: return "lattice_concurrent";
+    case Family::nested_rotated: return "nested_rotated";
   }
   return "?";
 }

@@ -92,6 +92,16 @@
 //                     exact incidences (vertex on edge, collinear edges, shared vertices, 1-ulp
 //                     crossings) become near-incidences at the rounding level, which is the
 //                     point: the same configurations in general position.
+//   lattice_concurrent  two overlapping lattice polygons ((Z / 8)^2, tp offset by up to 4 steps
+//                     each way), each a lattice hull as in lattice_touch or an octagon: a box
+//                     with its corners cut by 45° chamfers. Their medial axes have vertices
+//                     where three or four edge-distance lines meet exactly, and IP edges
+//                     through them (campaign seed 20261124, lattice_touch pair 394832).
+//   nested_rotated    nested polygons touching along an edge (3/4) or by an inner vertex on an
+//                     outer edge (1/4), the inner one as cp or tp, then rotated as in `rotated`:
+//                     an inner edge along an outer one to within rounding, whose near-parallel
+//                     crossing is an inner vertex (seed 20261124, rotated pair 384916, swapped).
+//                     The recipe names the rotation and the nesting.
 //   The two meta families (offset_1e9, rotated) generate their base with generate_pair and a
 //   seed drawn from their own stream, and the recipe names it ("base FAMILY seed S index 0: ..."),
 //   so the base is regenerated from the recipe alone.
@@ -134,16 +144,18 @@ enum class Family : std::uint8_t {
   identical,
   offset_1e9,
   rotated,
+  lattice_concurrent,
+  nested_rotated,
 };
 
 // New families are appended: a family's enumerator value seeds its stream, so the existing
 // streams stay as they were.
-inline constexpr std::array<Family, 18> all_families{
+inline constexpr std::array<Family, 20> all_families{
     Family::random,         Family::short_edges,    Family::wedge_5deg,       Family::wedge_0_5deg,
     Family::near_parallel,  Family::vertex_on_edge, Family::vertex_on_vertex, Family::edge_on_edge,
     Family::offset_1e6,     Family::lattice_touch,  Family::sliver,           Family::wedge_0_1deg,
     Family::tiny_edges,     Family::near_parallel_ulp, Family::nested,        Family::identical,
-    Family::offset_1e9,     Family::rotated};
+    Family::offset_1e9,     Family::rotated,        Family::lattice_concurrent, Family::nested_rotated};
 
 std::string_view to_string(Family family);
 std::optional<Family> parse_family(std::string_view name);
