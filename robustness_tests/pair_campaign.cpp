@@ -73,8 +73,10 @@ bool same_labels(const IntersectionPolygon& a, const IntersectionPolygon& b) {
 // The crossing of CP edge p -> q with TP edge t0 -> t1 is X = t0 + s d with s = N / D,
 // N = l x w, D = l x d, l = q - p, d = t1 - t0, w = p - t0. In double:
 //   * N and D are cross products of rounded differences of inputs: by Shewchuk's bound
-//     (the kernel's cross filter) |fl(N) - N| <= e Nbar, |fl(D) - D| <= e Dbar, where
-//     e = (3 + 16u) u and Nbar = |lx wy| + |ly wx|, Dbar = |lx dy| + |ly dx| (computed);
+//     (the kernel's cross filter) the exact difference of the rounded products is within
+//     (3 + 16u) u Nbar of N, and its rounding adds u |fl(N)| <= u (1 + u) Nbar, so
+//     |fl(N) - N| <= e Nbar, |fl(D) - D| <= e Dbar with e = (4 + 32u) u (covering the rounding
+//     of the computed Nbar = |lx wy| + |ly wx|, Dbar = |lx dy| + |ly dx| too);
 //   * fl(N)/fl(D) - N/D = ((fl(N) - N) D - N (fl(D) - D)) / (fl(D) D), so with |s| <= 1 (the
 //     combinatorics put X on the TP edge) |s' - s| <= ds = e (Nbar + Dbar) / |fl(D)| + u|s'|;
 //     the clamp of s' to [0, 1] projects onto a set containing s and cannot increase the error,
@@ -98,7 +100,7 @@ CrossingBound crossing_bound(const ConvexPolygon& cp, const ConvexPolygon& tp, c
   const double n_bar = std::fabs(lx * wy) + std::fabs(ly * wx);
   const double d_bar = std::fabs(lx * dy) + std::fabs(ly * dx);
   const double d = lx * dy - ly * dx;
-  const double e = (3.0 + 16.0 * u) * u;
+  const double e = (4.0 + 32.0 * u) * u;
   const double ds_formula = d == 0.0 ? 1.0 : std::min(1.0, e * (n_bar + d_bar) / std::fabs(d) + u);
   const double ds = std::min(ds_formula, rk::crossing_parameter_tolerance * bound_slack);
   const auto coordinate = [&](double dc, double xf, double xe) {

@@ -12,7 +12,7 @@ namespace detail {
 
 std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point2& q, const Point2& t0,
                                                     const Point2& t1, double tolerance) {
-  constexpr double e = (3.0 + 16.0 * unit_roundoff) * unit_roundoff;  // Shewchuk's ccwerrboundA
+  constexpr double e = (4.0 + 32.0 * unit_roundoff) * unit_roundoff;  // ccwerrboundA + u: see the header
   const double lx = q.x - p.x, ly = q.y - p.y;
   const double dx = t1.x - t0.x, dy = t1.y - t0.y;
   const double wx = p.x - t0.x, wy = p.y - t0.y;

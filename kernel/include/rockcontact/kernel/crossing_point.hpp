@@ -21,12 +21,14 @@
 // Result, per coordinate c:
 //   |X'_c - X_c| <= (2^-40 + 3u) |t1_c - t0_c| + 2u |X_c| + 2^-1073      (u = 2^-53)
 // i.e. within ~1e-12 of the TP edge's extent, whatever the angle; an exactly rounded point
-// (error <= u |X_c|) whenever the lines are within ~7e-4 rad of parallel. Fallbacks are counted
+// (error <= u |X_c|) whenever the lines are within ~1e-3 rad of parallel. Fallbacks are counted
 // as PredicateKind::crossing_point.
 //
 // Derivation of ds (round to nearest, |s| <= 1 because the exact predicates put X on the TP
-// segment): with e = (3 + 16u) u, Shewchuk's bound gives |N' - N| <= e N̄ + 2^-1074 and
-// |D' - D| <= e D̄ + 2^-1074 for the double cross products of rounded differences (the
+// segment): Shewchuk's bound (3 + 16u) u N̄ covers the exact difference of the two rounded
+// products, and rounding that difference adds u |N'| <= u (1 + u) N̄ more; with N̄ itself
+// computed (a factor (1 - u)^2 low at most), e = (4 + 32u) u gives |N' - N| <= e N̄ + 2^-1074
+// and |D' - D| <= e D̄ + 2^-1074 for the double cross products of rounded differences (the
 // absolute term covers the two products' subnormal roundings, 2^-1075 each), and
 //   N'/D' - N/D = (N' - N) / D' - (N/D) (D' - D) / D',
 // so |N'/D' - s| <= (e (N̄ + D̄) + 2^-1073) / |D'|; the division adds u |s'| + 2^-1074. The
@@ -47,7 +49,7 @@ namespace rockcontact::kernel {
 
 // The filter's tolerance on the parameter s along the TP edge (dimensionless). Smaller values
 // make Filtered's crossings more accurate and send more near-parallel crossings to GMP
-// (~2 us each): at 2^-40 it is the crossings within ~7e-4 rad of parallel, about 5 in 10^4
+// (~2 us each): at 2^-40 it is the crossings within ~1e-3 rad of parallel, about 6 in 10^4
 // crossings of random pairs.
 inline constexpr double crossing_parameter_tolerance = 0x1p-40;
 

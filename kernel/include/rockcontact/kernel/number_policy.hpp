@@ -5,7 +5,9 @@
 //             on near-degenerate input; kept as the baseline and for differential testing.
 //   Filtered  predicates in double with a proven error bound, re-evaluated exactly (GMP
 //             rationals) only when the sign is uncertain; constructions in double whose
-//             combinatorics follow the exact predicates. The default.
+//             combinatorics follow the exact predicates, crossing points certified to 2^-40 of
+//             their edge or else rounded from the exact crossing (crossing_point.hpp). The
+//             default.
 //   Exact     predicates and constructions in GMP rationals (square roots of edge lengths,
 //             needed only by the potential, at 256 bits); results rounded to double once, at
 //             the end. The reference.

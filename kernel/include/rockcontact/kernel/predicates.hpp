@@ -109,15 +109,17 @@ inline Sign cross_sign_filtered(const Point2& p0, const Point2& p1, const Point2
 
 // Semi-static filter for crossing_side (stage 1a): the formula D A + N B evaluated in double
 // alongside its magnitude T = D̄ Ā + N̄ B̄, where X̄ = |x1 y2| + |x2 y1| is the magnitude of a
-// cross product of rounded differences. Derivation (u = 2^-53): by Shewchuk's bound each rounded
-// cross product X~ satisfies |X~ - X| <= e X̄ with e = (3 + 16u) u, and |X~| <= (1 + u) X̄. Then
-//   |fl(D~ A~) - D A| <= |D~| |A~ - A| + |A| |D~ - D| + u |D~ A~| <= (7u + O(u²)) D̄ Ā,
+// cross product of rounded differences. Derivation (u = 2^-53): Shewchuk's bound puts the exact
+// difference of the two rounded products within (3 + 16u) u X̄ of X, and rounding that
+// difference adds u |X~| more, so each rounded cross product X~ satisfies |X~ - X| <= e X̄ with
+// e = (4 + 17u) u, and |X~| <= (1 + u)^2 X̄. Then
+//   |fl(D~ A~) - D A| <= |D~| |A~ - A| + |A| |D~ - D| + u |D~ A~| <= (9u + O(u²)) D̄ Ā,
 // likewise for N B, and the final sum adds u (D̄ Ā + N̄ B̄): the error is at most
-// (8u + O(u²)) T. T itself is computed with a relative error of a few u, so 9u T (one spare u
-// covers every second-order term) bounds the error. Underflow: if D̄, N̄, Ā, B̄ are all at least
-// 2^-400, the at most 2^-1074 absolute error of a subnormal product is far below u T; smaller
-// magnitudes, and overflow, go to the running-error filter (stage 1b), which handles both.
-inline constexpr double crossing_side_error_factor = 9.0 * unit_roundoff;
+// (10u + O(u²)) T. T itself is computed with a relative error of a few u, so 11u T (one spare u
+// covers every second-order term) bounds the error. Underflow: if D̄, N̄, Ā, B̄ are all at least 2^-400, the at most 2^-1074 absolute error of a
+// subnormal product is far below u T; smaller magnitudes, and overflow, go to the running-error
+// filter (stage 1b), which handles both.
+inline constexpr double crossing_side_error_factor = 11.0 * unit_roundoff;
 inline constexpr double crossing_side_min_magnitude = 0x1p-400;
 
 struct Magnitude {
