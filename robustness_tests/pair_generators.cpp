@@ -838,33 +838,59 @@ std::optional<PolygonPair> lattice_touch_pair(Rng& rng) {
   return pair_if_valid(std::move(cp), convex_hull(std::move(points)));
 }
 
-// A lattice box of w x h steps at (i0, j0) with each corner cut by a 45° chamfer of c_k steps
-// (0 <= c_k <= min(w, h) / 2, so neighbouring cuts meet at most at an edge's midpoint). Its
-// edge directions are multiples of 45°: the distances to the diagonal edges carry 1 / sqrt(2),
-// and the medial axis has vertices where three or four edge-distance lines meet exactly.
-Polygon lattice_octagon(Rng& rng, std::int64_t i0, std::int64_t j0) {
-  const std::int64_t w = rng.integer(2, 8);
-  const std::int64_t h = rng.integer(2, 8);
-  std::array<std::int64_t, 4> c{};
-  for (std::int64_t& cut : c) cut = rng.integer(0, std::min(w, h) / 2);
-  const std::int64_t i1 = i0 + w, j1 = j0 + h;
-  return convex_hull({lattice_point(i0 + c[0], j0), lattice_point(i1 - c[1], j0), lattice_point(i1, j0 + c[1]),
-                      lattice_point(i1, j1 - c[2]), lattice_point(i1 - c[2], j1), lattice_point(i0 + c[3], j1),
-                      lattice_point(i0, j1 - c[3]), lattice_point(i0, j0 + c[0])});
+// A right triangle with legs along the axes whose sides are a Pythagorean triple (a, b, c)
+// times s = 2^-4 m, and a tp with an edge through cp's incentre: there the distance lines of
+// cp's three edges meet exactly (the incentre is the lattice point (r s, r s) from the right
+// angle, r = (a + b - c) / 2), and dividing by the hypotenuse c s rounds. A tp edge through it
+// carries an IP edge whose envelope has a three-line tie that rounding can break either way.
+std::optional<PolygonPair> incentre_pair(Rng& rng, std::string& recipe) {
+  static constexpr std::array<std::array<std::int64_t, 3>, 4> triples{{{3, 4, 5}, {5, 12, 13}, {8, 15, 17}, {7, 24, 25}}};
+  constexpr double s = 0x1p-4;
+  const auto& triple = triples[rng.index(triples.size())];
+  const bool swap_legs = rng.chance(0.5);
+  const double sx = rng.sign();
+  const double sy = rng.sign();
+  const double a = static_cast<double>(swap_legs ? triple[1] : triple[0]);
+  const double b = static_cast<double>(swap_legs ? triple[0] : triple[1]);
+  const double r = static_cast<double>((triple[0] + triple[1] - triple[2]) / 2);
+  Polygon cp = convex_hull({{0, 0}, {sx * a * s, 0}, {0, sy * b * s}});
+  const Point2 incentre{sx * r * s, sy * r * s};
+  const std::int64_t p = rng.integer(-3, 3);
+  const std::int64_t q = rng.integer(-3, 3);
+  if (p == 0 && q == 0) return std::nullopt;
+  const Vector2 d{static_cast<double>(p) * s, static_cast<double>(q) * s};
+  const double k0 = static_cast<double>(rng.integer(1, 3));
+  const double k1 = static_cast<double>(rng.integer(1, 3));
+  const Point2 t0 = incentre + k0 * d, t1 = incentre + -k1 * d;
+  Polygon points{t0, t1};
+  const auto extra = rng.integer(1, 4);
+  for (std::int64_t attempt = 0; attempt < 64 && std::ssize(points) < extra + 2; ++attempt) {
+    const std::int64_t i = rng.integer(-16, 16);
+    const Point2 x = incentre + Vector2{static_cast<double>(i) * s, static_cast<double>(rng.integer(-16, 16)) * s};
+    if (orient(t0, t1, x) == Sign::positive) points.push_back(x);
+  }
+  if (orient(t0, t1, incentre) != Sign::zero) generator_bug("the tp edge misses the incentre");
+  Polygon tp = convex_hull(std::move(points));
+  if (!has_edge(tp, t0, t1)) generator_bug("t0 t1 is not a tp edge");
+  recipe = format("cp the (%d, %d, %d) right triangle x 2^-4, tp edge through its incentre along (%d, %d)",
+                  static_cast<int>(a), static_cast<int>(b), static_cast<int>(triple[2]), static_cast<int>(p),
+                  static_cast<int>(q));
+  return pair_if_valid(std::move(cp), std::move(tp));
 }
 
 std::optional<PolygonPair> lattice_concurrent_pair(Rng& rng) {
-  const bool cp_octagon = rng.chance(0.5);
-  Polygon cp = cp_octagon ? lattice_octagon(rng, 0, 0) : lattice_polygon(rng, 0, 0);
-  const bool tp_octagon = rng.chance(0.5);
-  const std::int64_t i0 = rng.integer(-4, 4);
-  const std::int64_t j0 = rng.integer(-4, 4);
-  Polygon tp = tp_octagon ? lattice_octagon(rng, i0, j0) : lattice_polygon(rng, i0, j0);
-  std::optional<PolygonPair> pair = pair_if_valid(std::move(cp), std::move(tp));
-  if (pair) {
-    pair->recipe = format("cp %s, tp %s at (%d, %d) steps", cp_octagon ? "octagon" : "lattice hull",
-                          tp_octagon ? "octagon" : "lattice hull", static_cast<int>(i0), static_cast<int>(j0));
+  std::string recipe;
+  std::optional<PolygonPair> pair;
+  if (rng.chance(0.5)) {
+    pair = incentre_pair(rng, recipe);
+  } else {
+    Polygon cp = lattice_polygon(rng, 0, 0);
+    const std::int64_t i0 = rng.integer(-4, 4);
+    const std::int64_t j0 = rng.integer(-4, 4);
+    pair = pair_if_valid(std::move(cp), lattice_polygon(rng, i0, j0));
+    recipe = format("two lattice hulls, tp at (%d, %d) steps", static_cast<int>(i0), static_cast<int>(j0));
   }
+  if (pair) pair->recipe = recipe;
   return pair;
 }
 

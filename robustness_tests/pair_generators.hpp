@@ -92,11 +92,12 @@
 //                     exact incidences (vertex on edge, collinear edges, shared vertices, 1-ulp
 //                     crossings) become near-incidences at the rounding level, which is the
 //                     point: the same configurations in general position.
-//   lattice_concurrent  two overlapping lattice polygons ((Z / 8)^2, tp offset by up to 4 steps
-//                     each way), each a lattice hull as in lattice_touch or an octagon: a box
-//                     with its corners cut by 45° chamfers. Their medial axes have vertices
-//                     where three or four edge-distance lines meet exactly, and IP edges
-//                     through them (campaign seed 20261124, lattice_touch pair 394832).
+//   lattice_concurrent  points where three edge-distance lines meet exactly, on an IP edge
+//                     (campaign seed 20261124, lattice_touch pair 394832): half the pairs are a
+//                     right triangle whose sides are a Pythagorean triple times 2^-4 m (its
+//                     incentre is a grid point where all three distance lines meet) with a tp
+//                     edge through the incentre along a small integer direction; half are two
+//                     overlapping lattice hulls as in lattice_touch (tp offset by up to 4 steps).
 //   nested_rotated    nested polygons touching along an edge (3/4) or by an inner vertex on an
 //                     outer edge (1/4), the inner one as cp or tp, then rotated as in `rotated`:
 //                     an inner edge along an outer one to within rounding, whose near-parallel

@@ -11,6 +11,8 @@
 // (sliver onwards) are also checked against the parameters their recipe states, and the meta
 // families (offset_1e9, rotated) against their base pair regenerated from the recipe.
 
+#include <gmpxx.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -462,6 +464,34 @@ void check_nested_rotated(const rb::PolygonPair& pair, Overlap verdict, const st
   BOOST_TEST_REQUIRE((verdict == Overlap::overlap), name << ": nested polygons do not overlap");
 }
 
+// cp is a right triangle; its incentre, the point where the three edge lines' distances are
+// equal, lies on the line of a tp edge. Both decided in GMP rationals: the incentre is
+// (a A + b B + c C) / (a + b + c) with integer side lengths over 2^-4 (Pythagorean).
+void check_incentre(const rb::PolygonPair& pair, const std::string& name) {
+  BOOST_TEST_REQUIRE(pair.cp.size() == 3u, name << ": cp is no triangle");
+  std::array<mpq_class, 3> side;  // side k is opposite vertex k
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Point2 &p = pair.cp[(k + 1) % 3], &q = pair.cp[(k + 2) % 3];
+    const double len = std::hypot(q.x - p.x, q.y - p.y);
+    BOOST_TEST_REQUIRE(len * 16 == std::round(len * 16), name << ": a side is no multiple of 2^-4");
+    side[k] = len;
+  }
+  const mpq_class perimeter = side[0] + side[1] + side[2];
+  mpq_class ix = 0, iy = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    ix += side[k] * pair.cp[k].x;
+    iy += side[k] * pair.cp[k].y;
+  }
+  ix /= perimeter;
+  iy /= perimeter;
+  bool through = false;
+  for (std::size_t k = 0; k < pair.tp.size() && !through; ++k) {
+    const Point2 &p = pair.tp[k], &q = pair.tp[(k + 1) % pair.tp.size()];
+    through = sgn(mpq_class((mpq_class(q.x) - p.x) * (iy - p.y) - (mpq_class(q.y) - p.y) * (ix - p.x))) == 0;
+  }
+  BOOST_TEST_REQUIRE(through, name << ": no tp edge through cp's incentre");
+}
+
 bool bitwise_equal(const rb::PolygonPair& a, const rb::PolygonPair& b) {
   const auto same = [](const Polygon& p, const Polygon& q) {
     return p.size() == q.size() && std::equal(p.begin(), p.end(), q.begin(), [](const Point2& u, const Point2& v) {
@@ -516,18 +546,11 @@ BOOST_AUTO_TEST_CASE(every_pair_is_valid_and_has_its_family_property) {
                              name << ": off the lattice");
           break;
         case rb::Family::lattice_concurrent:
-          BOOST_TEST_REQUIRE(all_coordinates(pair, [](double x) { return on_grid(x, -3); }),
-                             name << ": off the lattice");
-          // An octagon's edges are axis-parallel or diagonal: |dx| == |dy| or one of them 0.
-          for (const auto& [poly, octagon] : {std::pair{&pair.cp, mentions(pair, "cp octagon")},
-                                              std::pair{&pair.tp, mentions(pair, "tp octagon")}}) {
-            if (!octagon) continue;
-            for (std::size_t k = 0; k < poly->size(); ++k) {
-              const Point2 &a = (*poly)[k], &b = (*poly)[(k + 1) % poly->size()];
-              const double dx = std::fabs(b.x - a.x), dy = std::fabs(b.y - a.y);
-              BOOST_TEST_REQUIRE((dx == 0 || dy == 0 || dx == dy), name << ": an octagon edge not at 45°");
-            }
-          }
+          // On the grid 2^-4 (triangles) or 2^-3 (hulls); a triangle's tp edge passes through
+          // its incentre, where the three distance lines meet: checked in exact rationals.
+          BOOST_TEST_REQUIRE(all_coordinates(pair, [](double x) { return on_grid(x, -4); }),
+                             name << ": off the grid");
+          if (mentions(pair, "incentre")) check_incentre(pair, name);
           break;
         case rb::Family::nested_rotated: check_nested_rotated(pair, verdict, name); break;
         case rb::Family::wedge_5deg:
