@@ -30,6 +30,7 @@
 
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/kernel/demarcation.hpp"
+#include "rockcontact/kernel/detail/potential_impl.hpp"
 #include "rockcontact/kernel/moments.hpp"
 #include "rockcontact/kernel/potential.hpp"
 
@@ -319,6 +320,20 @@ BOOST_AUTO_TEST_CASE(exact_demarcation_on_lattice_polygons_with_concurrent_lines
       ++chord;
     }
   }
+}
+
+// Coefficients beyond double's range (coordinates past ~1e150 m overflow the cross products)
+// have no value for Filtered's exact stage to decide on; handing an infinity to it aborted
+// inside GMP (found by fuzz_pair_kernel). The envelope then orders the lines by Float's
+// orientation, which still knows that a line at +infinity is never the lowest: with
+// d0 = +inf, d1 = t, d2 = 1 - t the only breakpoint is where d1 = d2, t = 1/2 exactly.
+BOOST_AUTO_TEST_CASE(envelope_with_an_infinite_coefficient_decides_in_double) {
+  rk::detail::LinearPieces<double> lines;
+  lines.alpha = {HUGE_VAL, 0.0, 1.0};
+  lines.beta = {0.0, 1.0, -1.0};
+  std::vector<double> t;
+  rk::detail::envelope_breakpoints<rk::Filtered>(lines, t);
+  BOOST_TEST(t == std::vector<double>{0.5}, boost::test_tools::per_element());
 }
 
 // Triangles: the medial axis is the three vertex bisectors up to the incentre, so the paper's

@@ -91,13 +91,24 @@ void edge_distance_functions(const ConvexPolygon& poly, const PointT<FT>& a, con
 // above A for every t > 0; with B a line that is (to rounding) lowest at t = 1, a line of
 // smaller slope that is certainly above B at t = 1 is above it on all of [0, 1]. Both tests
 // only ever drop lines that cannot matter, so the hull of the rest is exact on [0, 1].
+//
+// Coefficients beyond double's range (a cross product of coordinate differences overflows past
+// ~1e150 m, or an edge length does) have no value to decide on exactly: the lines are then
+// ordered by Float's orientation, and the pair is far outside the range where a double force
+// means anything (robustness_tests/fuzz/fuzz_pair_kernel.cpp: its sane range).
 template <NumberPolicy Policy, class FT>
 void envelope_breakpoints(LinearPieces<FT>& f, std::vector<FT>& out) {
   const std::size_t n = f.alpha.size();
+  bool representable = true;
+  if constexpr (std::is_same_v<FT, double>) {
+    for (std::size_t k = 0; k < n; ++k) {
+      representable &= std::isfinite(f.alpha[k]) && std::isfinite(f.beta[k]);
+    }
+  }
   const auto turn = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
     if constexpr (std::is_same_v<FT, double>) {
-      return orientation<Policy>(Point2{f.beta[i], f.alpha[i]}, Point2{f.beta[j], f.alpha[j]},
-                                 Point2{f.beta[k], f.alpha[k]});
+      const Point2 pi{f.beta[i], f.alpha[i]}, pj{f.beta[j], f.alpha[j]}, pk{f.beta[k], f.alpha[k]};
+      return representable ? orientation<Policy>(pi, pj, pk) : orientation<Float>(pi, pj, pk);
     } else {
       return sign_of(FT(cross(FT(f.beta[j] - f.beta[i]), FT(f.alpha[j] - f.alpha[i]),
                               FT(f.beta[k] - f.beta[i]), FT(f.alpha[k] - f.alpha[i]))));
