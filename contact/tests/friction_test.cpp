@@ -1,7 +1,8 @@
 #define BOOST_TEST_MODULE contact_friction
 #include <boost/test/unit_test.hpp>
 
-// Coulomb stick/slide of a pair (seed 000 eq. 24-26, §3.2.6) against hand-computed cases.
+// Coulomb friction of a pair against hand-computed cases: the paper's stick/slide law (seed 000
+// eq. 24-26, §3.2.6) and the elastoplastic law (friction.hpp), side by side where they differ.
 // Every expected number below is worked out in the comment next to it. The inputs are chosen so
 // that the arithmetic is a handful of correctly rounded operations on short decimals; the
 // tolerance 1e-12 relative covers those roundings (each is 2^-53 ~ 1.1e-16 relative) with a
@@ -20,6 +21,7 @@ using rockcontact::contact::advance_friction;
 using rockcontact::contact::commit_friction;
 using rockcontact::contact::evaluate_friction;
 using rockcontact::contact::FrictionLaw;
+using rockcontact::contact::FrictionModel;
 using rockcontact::contact::FrictionResult;
 using rockcontact::contact::FrictionState;
 using rockcontact::contact::Vector2;
@@ -33,7 +35,8 @@ bool close(Vector2 a, Vector2 b, double scale) {
 }
 
 // kt = 1e7 N/m, phi = 30 deg: with |f_n| = 100 N/m the limit is 100 tan 30° = 57.735... N/m.
-FrictionLaw law30() { return {1.0e7, 30.0}; }
+FrictionLaw law30() { return {1.0e7, 30.0, 0.0, FrictionModel::paper}; }
+FrictionLaw elastoplastic30() { return {1.0e7, 30.0}; }
 const double limit30 = 100.0 * std::tan(std::numbers::pi / 6.0);
 
 }  // namespace
@@ -53,7 +56,7 @@ BOOST_AUTO_TEST_CASE(stick_below_the_limit) {
 // 50 tan 20° = 18.2 < 200: slide at the limit against s = t, f = -18.2 (0.8, -0.6).
 BOOST_AUTO_TEST_CASE(slide_at_the_limit_along_d_tan) {
   const FrictionState state{{2.2e-5, -0.4e-5}, false, {}};
-  const FrictionResult r = evaluate_friction(state, {30.0, 40.0}, {1.0e7, 20.0});
+  const FrictionResult r = evaluate_friction(state, {30.0, 40.0}, {1.0e7, 20.0, 0.0, FrictionModel::paper});
   const double limit = 50.0 * std::tan(20.0 * std::numbers::pi / 180.0);
   BOOST_TEST(r.sliding);
   BOOST_TEST(close(r.force, {-0.8 * limit, 0.6 * limit}, limit));
@@ -100,10 +103,10 @@ BOOST_AUTO_TEST_CASE(large_reversal_slides_the_other_way_at_the_limit) {
 // §3.2.6: after a stick evaluation d accumulates, after a sliding one it restarts from Δd.
 BOOST_AUTO_TEST_CASE(update_accumulates_after_stick_and_resets_after_sliding) {
   FrictionState stick{{1e-6, 2e-6}, false, {}};
-  advance_friction(stick, {0.5e-6, -1e-6});
+  advance_friction(stick, {0.5e-6, -1e-6}, law30());
   BOOST_TEST(close(stick.displacement, {1.5e-6, 1e-6}, 1e-6));
   FrictionState slide{{1e-6, 2e-6}, true, {-1.0, 0.0}};
-  advance_friction(slide, {0.5e-6, -1e-6});
+  advance_friction(slide, {0.5e-6, -1e-6}, law30());
   BOOST_TEST(close(slide.displacement, {0.5e-6, -1e-6}, 1e-6));
 }
 
@@ -117,13 +120,13 @@ BOOST_AUTO_TEST_CASE(degenerate_inputs) {
   BOOST_TEST(free.sliding);
   BOOST_TEST(close(free.force, {0.0, 0.0}, 1.0));
   const FrictionResult frictionless = evaluate_friction({{1e-6, 0.0}, false, {}}, {0.0, 100.0},
-                                                        {1.0e7, 0.0});
+                                                        {1.0e7, 0.0, 0.0, FrictionModel::paper});
   BOOST_TEST(frictionless.sliding);
   BOOST_TEST((frictionless.force == Vector2{-0.0, 0.0} || frictionless.force == Vector2{0.0, 0.0}));
 }
 
 // A loading-unloading history through evaluate -> commit -> advance, as the integrator calls
-// them. Normal (0, 100), phi = 30 deg (limit 57.7 N/m), kt = 1e7 N/m. Increments of CP
+// them, under the paper's law. Normal (0, 100), phi = 30 deg (limit 57.7 N/m), kt = 1e7 N/m. Increments of CP
 // relative to TP, and the force found at the start of each step:
 //   d = 0                  -> 0         stick
 //   +2e-6: d = 2e-6        -> -20       stick (20 < 57.7)
@@ -143,7 +146,7 @@ BOOST_AUTO_TEST_CASE(loading_sliding_and_reversal_history) {
                               {-1e-6, 20.0, false}};
   FrictionState state;
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    advance_friction(state, {rows[k].increment, 0.0});
+    advance_friction(state, {rows[k].increment, 0.0}, law30());
     const FrictionResult r = evaluate_friction(state, {0.0, 100.0}, law30());
     BOOST_TEST_CONTEXT("row " << k) {
       BOOST_TEST(r.sliding == rows[k].sliding);
@@ -169,4 +172,85 @@ BOOST_AUTO_TEST_CASE(bad_laws_are_rejected_by_field) {
   BOOST_TEST(message_names({1.0e7, 90.0}, "friction_angle_deg"));
   BOOST_TEST(message_names({1.0e7, -1.0}, "friction_angle_deg"));
   BOOST_TEST(message_names({1.0e7, std::nan("")}, "friction_angle_deg"));
+  BOOST_TEST(message_names({1.0e7, 10.0, -1.0}, "cohesion"));
+  BOOST_TEST(message_names({1.0e7, 10.0, HUGE_VAL}, "cohesion"));
+  BOOST_TEST(!rockcontact::contact::parse_friction_model("coulomb").has_value());
+  BOOST_TEST((rockcontact::contact::parse_friction_model("paper") == FrictionModel::paper));
+  BOOST_TEST((rockcontact::contact::parse_friction_model("elastoplastic") == FrictionModel::elastoplastic));
+}
+
+// ---- elastoplastic ------------------------------------------------------------------------
+// Normal (0, 100) on CP: n = (0, 1), the tangent t = (-n_y, n_x) = (-1, 0). CP moving +x relative
+// to TP by Δ stretches the spring to s = Δd . t = -Δ, and f_t = -kt s t = (-kt Δ, 0) opposes it.
+
+// The same history as the paper's above. Up to the first slip they agree; the slip keeps the
+// stretch at the cap limit / kt = 5.7735e-6 m (paper: resets to the increment), so the reversal
+// of 1e-6 m unloads the spring from the cap: f = -kt (5.7735e-6 - 1e-6) = -47.735 N/m, still
+// resisting the downhill direction (paper: +10, the spring restarted from zero). The first slip,
+// from the kept stretch 4e-6 m to a trial 6e-6 m, dissipates ½ kt (4e-6 + cap)(6e-6 - cap) =
+// 1.1069e-5 J/m; the next, sliding on, limit × the plastic slip 2e-6 m = 1.1547e-4 J/m.
+BOOST_AUTO_TEST_CASE(elastoplastic_history_keeps_the_stretch_through_a_slip) {
+  const double cap = limit30 / 1.0e7;
+  struct Row {
+    double increment, force;
+    bool sliding;
+    double dissipated;
+  };
+  const std::vector<Row> rows{{0.0, 0.0, false, 0.0},
+                              {2e-6, -20.0, false, 0.0},
+                              {2e-6, -40.0, false, 0.0},
+                              {2e-6, -limit30, true, 0.5e7 * (4e-6 + cap) * (6e-6 - cap)},
+                              {2e-6, -limit30, true, limit30 * 2e-6},
+                              {-1e-6, -1.0e7 * (cap - 1e-6), false, 0.0},
+                              {-1e-6, -1.0e7 * (cap - 2e-6), false, 0.0}};
+  FrictionState state;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    advance_friction(state, {rows[k].increment, 0.0}, elastoplastic30());
+    const FrictionResult r = evaluate_friction(state, {0.0, 100.0}, elastoplastic30());
+    BOOST_TEST_CONTEXT("row " << k) {
+      BOOST_TEST(r.sliding == rows[k].sliding);
+      BOOST_TEST(close(r.force, {rows[k].force, 0.0}, limit30));
+      BOOST_TEST(close(r.dissipated, rows[k].dissipated, 1e-4));
+    }
+    commit_friction(state, r);
+  }
+  // A sliding record accumulates: no reset.
+  FrictionState sliding{{1e-6, 0.0}, true, {-10.0, 0.0}, {0.0, 1.0}};
+  advance_friction(sliding, {0.5e-6, 0.0}, elastoplastic30());
+  BOOST_TEST(close(sliding.displacement, {1.5e-6, 0.0}, 1e-6));
+}
+
+// The stretch turns with the contact frame. Built under n = (0, 1) as s = 3e-6 m along
+// t = (-1, 0) (the vector (-3e-6, 0)); the normal turns to (1, 0), t' = (0, 1): the stretch is
+// s t' = (0, 3e-6) and f = (0, -30) N/m, the same magnitude. (Projecting the old vector on the
+// new tangent would have lost it all: (-3e-6, 0) . (0, 1) = 0.) Increments along the normal
+// leave it unchanged.
+BOOST_AUTO_TEST_CASE(elastoplastic_stretch_turns_with_the_normal) {
+  const FrictionState built{{-3e-6, 0.0}, false, {30.0, 0.0}, {0.0, 1.0}};
+  const FrictionResult r = evaluate_friction(built, {100.0, 0.0}, elastoplastic30());
+  BOOST_TEST(!r.sliding);
+  BOOST_TEST(close(r.force, {0.0, -30.0}, 30.0));
+  BOOST_TEST(close(r.next.normal, {1.0, 0.0}, 1.0));
+  FrictionState pushed = built;
+  advance_friction(pushed, {0.0, 7e-6}, elastoplastic30());  // along the old normal
+  const FrictionResult same = evaluate_friction(pushed, {0.0, 100.0}, elastoplastic30());
+  BOOST_TEST(close(same.force, {30.0, 0.0}, 30.0));
+}
+
+// Cohesion: phi = 0, c = 1e4 Pa on L = 0.01 m gives the limit c L = 100 N/m whatever the normal
+// force. A stretch of 5e-6 m (kt s = 50) sticks; 2e-5 m (200) slides at 100 N/m, keeping the
+// stretch at 1e-5 m.
+BOOST_AUTO_TEST_CASE(elastoplastic_cohesion_adds_c_times_the_contact_length) {
+  const FrictionLaw cohesive{1.0e7, 0.0, 1.0e4};
+  FrictionState state;
+  advance_friction(state, {5e-6, 0.0}, cohesive);
+  const FrictionResult stick = evaluate_friction(state, {0.0, 1.0}, cohesive, 0.01);
+  BOOST_TEST(!stick.sliding);
+  BOOST_TEST(close(stick.force, {-50.0, 0.0}, 100.0));
+  commit_friction(state, stick);
+  advance_friction(state, {1.5e-5, 0.0}, cohesive);
+  const FrictionResult slide = evaluate_friction(state, {0.0, 1.0}, cohesive, 0.01);
+  BOOST_TEST(slide.sliding);
+  BOOST_TEST(close(slide.force, {-100.0, 0.0}, 100.0));
+  BOOST_TEST(close(slide.tangential, {1e-5, 0.0}, 1e-5));
 }

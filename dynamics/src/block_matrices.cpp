@@ -62,6 +62,11 @@ Vector6 transform_transpose(Vector2 r, Vector2 f) {
   return {f.x, f.y, r.x * f.y - r.y * f.x, r.x * f.x, r.y * f.y, 0.5 * (r.y * f.x + r.x * f.y)};
 }
 
+Vector2 transform(Vector2 r, const Vector6& d) {
+  return {d[0] - r.y * d[2] + r.x * d[3] + 0.5 * r.y * d[5],
+          d[1] + r.x * d[2] + r.y * d[4] + 0.5 * r.x * d[5]};
+}
+
 namespace {
 
 // Rows of T restricted to (r0, ex, ey, gxy) at offset r.

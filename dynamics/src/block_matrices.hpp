@@ -66,6 +66,10 @@ Eigen::Matrix3d elasticity_matrix(const Material& material, PlaneMode plane);
 // T(x, y)^T f for a point at offset r from the centroid: the generalized force of f (N/m).
 Vector6 transform_transpose(Vector2 r, Vector2 f);
 
+// T(x, y) d for a point at offset r from the centroid (eq. 3): its displacement for d a
+// displacement, its velocity for d a velocity.
+Vector2 transform(Vector2 r, const Vector6& d);
+
 // Largest compliance of a point of the block, max over vertices of the largest eigenvalue of
 // T M^-1 T^T (1/kg per metre of thickness): the acceleration of a boundary point per unit force
 // there. It is a convex quadratic of the point, so its maximum over the polygon is at a vertex.

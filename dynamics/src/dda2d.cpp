@@ -35,6 +35,14 @@ constexpr double penetration_fraction = 0.5;
 // Below this many candidate pairs (or blocks) a parallel pass runs on the calling thread only:
 // starting the workers would cost more than it saves.
 constexpr std::ptrdiff_t parallel_threshold = 64;
+// Initial equilibrium (dda2d.hpp): omega h of the relaxation steps (1.6 ran into limit cycles of
+// the local damping on a 205-block rock mass; 0.8 converged there in 15 000 iterations), Cundall's
+// local damping factor, and the iteration cap.
+constexpr double relaxation_omega_h = 0.8;
+constexpr double local_damping = 0.8;
+constexpr std::size_t relaxation_iterations = 100000;
+// Pairs apart by at most this fraction of the smaller perimeter count as resting on each other.
+constexpr double resting_gap = 1.0e-6;
 
 std::string number(double x) {
   char text[32];
@@ -82,6 +90,14 @@ void check_params(const ContactLaw& law, const DdaParams& params) {
                                 number(law.normal.H));
   }
   if (law.friction) contact::check_friction_law(*law.friction);
+  if (!(params.equilibrium_tolerance > 0.0 && params.equilibrium_tolerance < 1.0)) {
+    throw std::invalid_argument("dda2d: equilibrium_tolerance must be in (0, 1), got " +
+                                number(params.equilibrium_tolerance));
+  }
+  if (!finite(law.damping_ratio) || !(law.damping_ratio >= 0.0)) {
+    throw std::invalid_argument("dda2d: contact damping_ratio must be finite and >= 0, got " +
+                                number(law.damping_ratio));
+  }
   std::set<std::pair<std::string, std::string>> seen;
   for (const Interface& face : law.interfaces) {
     const std::string name = "dda2d: interface between groups '" + face.groups[0] + "' and '" +
@@ -152,6 +168,7 @@ struct PartContact {
   double depth = 0.0;     // minimum translation distance, m
   std::size_t ip_size = 0;
   double area = 0.0;      // IP area, m²
+  double length = 0.0;    // contact length L: half the IP's perimeter, m
 };
 
 // Scratch of one thread's pair evaluations.
@@ -186,6 +203,7 @@ struct Body {
   double inertia = 0.0;         // rigid: kg m²/m
   Vector6 force{};              // generalized force at the current instant
   Vector6 contact_force{};      // its contact part
+  Vector6 dashpot_force{};      // the contact dashpots' part of contact_force
   Vector6 acceleration{};       // M^-1 force
   Vector6 increment{};          // Δd of the last step
   double damped = 0.0;          // kinetic energy the mass damping took in this step, J/m
@@ -202,6 +220,10 @@ struct Dda2d::Impl {
   // Construction.
   void add_block(const BlockSpec& spec);
   void estimate_critical_step();
+  void settle();
+  std::vector<std::vector<std::size_t>> resting_pairs() const;
+  double out_of_balance(const std::vector<char>& moving, double reference, std::size_t& worst) const;
+  double gyration_squared(std::size_t i) const;
   // Geometry-dependent data after the vertices moved.
   void refresh(std::size_t i);
   // Forces and accelerations at the current instant.
@@ -227,8 +249,11 @@ struct Dda2d::Impl {
   void second_half_kick(std::size_t i);
   void advance_friction_records();
   Vector2 point_increment(std::size_t i, Point2 p) const;
+  Vector2 point_velocity(std::size_t i, Point2 p) const;
+  Vector2 dashpot(const ContactState& c, const PartContact& m) const;
   void move(std::size_t i);
   void check_state();
+  void record_work();
   template <class F>
   void for_each_movable(F&& body);
   double kinetic(std::size_t i, const std::array<double, 6>& v) const;
@@ -263,13 +288,16 @@ struct Dda2d::Impl {
   std::size_t steps = 0;
   double contact_work = 0.0;         // J/m, work done against contact forces
   double friction_dissipated = 0.0;  // J/m
-  double damping_dissipated = 0.0;   // J/m
+  double damping_dissipated = 0.0;   // J/m, by the mass damping
+  double dashpot_dissipated = 0.0;   // J/m, work done against the contact dashpots
   double initial_total = 0.0;        // J/m
   double initial_budget = 0.0;       // kinetic(0) + strain(0) + E_floor, J/m
   double max_gravitational = 0.0;    // max |gravitational| seen, J/m
   double critical = std::numeric_limits<double>::infinity();
   std::string critical_source;
   double max_penetration = 0.0;
+  bool settling = false;  // inside settle(): tangential springs locked, no dashpots
+  Equilibrium equilibrium;
   kernel::PredicateCounters counters;
 };
 
@@ -305,6 +333,7 @@ Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParam
   resolve_groups(specs);
   estimate_critical_step();
   evaluate_forces();
+  if (params.initial_equilibrium) settle();
   const Energies e = energies();
   initial_total = e.total();
   double floor = 0.0;
@@ -434,6 +463,11 @@ void Dda2d::Impl::estimate_critical_step() {
   }
   if (worst == 0.0) return;
   critical = 2.0 / std::sqrt(worst);
+  if (law.damping_ratio > 0.0) {
+    const double zeta = law.damping_ratio;
+    critical *= std::sqrt(1.0 + zeta * zeta) - zeta;
+    critical_source += ", with contact dashpots of damping ratio " + number(zeta);
+  }
   if (params.dt > critical) {
     throw StabilityError("dda2d: dt = " + number(params.dt) + " s is above the critical time step " +
                          number(critical) + " s (2 / omega_max, omega_max = " +
@@ -469,6 +503,7 @@ void Dda2d::Impl::evaluate_forces() {
     const BlockState& s = states[i];
     b.force = {};
     b.contact_force = {};
+    b.dashpot_force = {};
     if (s.fixed) continue;
     b.force[0] = s.mass * params.gravity.x;
     b.force[1] = s.mass * params.gravity.y;
@@ -597,6 +632,7 @@ void Dda2d::Impl::measure(PartContact& c, PairScratch& mine) const {
   c.point = *r.point;
   c.ip_size = r.ip.size();
   c.area = r.area;
+  c.length = 0.5 * detail::perimeter(r.ip);
   c.depth = kernel::compute_entrance_block<kernel::Filtered>(cp, tp).distance;
 }
 
@@ -624,11 +660,15 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
     FrictionRecord& stamped = friction[m.parts];  // a new contact starts in stick, d = 0
     stamped.evaluation = evaluations;
     record = &stamped.state;
-    const contact::FrictionResult r = contact::evaluate_friction(*record, c.normal_force, *friction_law);
+    const contact::FrictionResult r = contact::evaluate_friction(
+        *record, c.normal_force, *friction_law, m.length,
+        settling ? contact::Slip::locked : contact::Slip::allowed);
     contact::commit_friction(*record, r);
     c.friction_force = r.force;
     c.sliding = r.sliding;
+    friction_dissipated += r.dissipated;
   }
+  if (law.damping_ratio > 0.0 && !settling) c.damping_force = dashpot(c, m);
   apply_contact(c);
   contacts.push_back(c);
   contact_records.push_back(record);
@@ -649,13 +689,41 @@ void Dda2d::Impl::check_penetration(const PartContact& m) {
   }
 }
 
+// The dashpot force on CP (dda2d.hpp, "Contact damping") at the current instant.
+Vector2 Dda2d::Impl::dashpot(const ContactState& c, const PartContact& m) const {
+  const double fn = std::hypot(c.normal_force.x, c.normal_force.y);
+  if (!(fn > 0.0)) return {};
+  const Vector2 n{c.normal_force.x / fn, c.normal_force.y / fn};
+  const Vector2 a = point_velocity(c.cp, c.point), b = point_velocity(c.tp, c.point);
+  const Vector2 v{a.x - b.x, a.y - b.y};
+  const double mi = states[c.cp].fixed ? 0.0 : states[c.cp].mass;
+  const double mj = states[c.tp].fixed ? 0.0 : states[c.tp].mass;
+  const double reduced = mi == 0.0 ? mj : mj == 0.0 ? mi : mi * mj / (mi + mj);
+  const PairLaw& pair = laws[law_index(c.cp, c.tp)];
+  const double kn = 2.0 * pair.normal.kn * m.length / pair.normal.H;
+  const double cn = 2.0 * law.damping_ratio * std::sqrt(reduced * kn);
+  const double along = v.x * n.x + v.y * n.y;
+  Vector2 f{-cn * along * n.x, -cn * along * n.y};
+  if (pair.friction && !c.sliding) {
+    const double ct = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.friction->kt);
+    f.x -= ct * (v.x - along * n.x);
+    f.y -= ct * (v.y - along * n.y);
+  }
+  return f;
+}
+
 void Dda2d::Impl::apply_contact(const ContactState& c) {
-  const Vector2 f{c.normal_force.x + c.friction_force.x, c.normal_force.y + c.friction_force.y};
+  const Vector2 f{c.normal_force.x + c.friction_force.x + c.damping_force.x,
+                  c.normal_force.y + c.friction_force.y + c.damping_force.y};
   const auto add = [&](std::size_t i, double sign) {
     if (states[i].fixed) return;
     const Point2& o = states[i].centroid;
-    const Vector6 g = detail::transform_transpose({c.point.x - o.x, c.point.y - o.y}, f);
+    const Vector2 r{c.point.x - o.x, c.point.y - o.y};
+    const Vector6 g = detail::transform_transpose(r, f);
     for (std::size_t k = 0; k < 6; ++k) bodies[i].contact_force[k] += sign * g[k];
+    if (c.damping_force.x == 0.0 && c.damping_force.y == 0.0) return;
+    const Vector6 d = detail::transform_transpose(r, c.damping_force);
+    for (std::size_t k = 0; k < 6; ++k) bodies[i].dashpot_force[k] += sign * d[k];
   };
   add(c.cp, 1.0);
   add(c.tp, -1.0);
@@ -672,6 +740,162 @@ void Dda2d::Impl::solve_acceleration(std::size_t i) {
   const Eigen::Vector4d rhs(b.force[2], b.force[3], b.force[4], b.force[5]);
   const Eigen::Vector4d a = b.rs_factor.solve(rhs);
   for (std::size_t k = 0; k < 4; ++k) b.acceleration[2 + k] = a(static_cast<Eigen::Index>(k));
+}
+
+// ---- initial equilibrium (dda2d.hpp) -----------------------------------------------------
+
+double Dda2d::Impl::gyration_squared(std::size_t i) const {
+  const double inertia = states[i].rigid ? bodies[i].inertia : bodies[i].rs_mass(0, 0);
+  return inertia / states[i].mass;
+}
+
+// max_i |F_i| / reference over the blocks marked in `moving`; `worst` is the block of the max.
+double Dda2d::Impl::out_of_balance(const std::vector<char>& moving, double reference,
+                                   std::size_t& worst) const {
+  double most = 0.0;
+  worst = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!moving[i]) continue;
+    const Vector6& f = bodies[i].force;
+    double moments = f[2] * f[2];
+    if (!states[i].rigid) moments += f[3] * f[3] + f[4] * f[4] + f[5] * f[5];
+    const double size = std::sqrt(f[0] * f[0] + f[1] * f[1] + moments / gyration_squared(i));
+    if (size > most) {
+      most = size;
+      worst = i;
+    }
+  }
+  return most / reference;
+}
+
+// The pairs of blocks resting on each other at the start: overlapping, touching, or apart by at
+// most resting_gap of the smaller perimeter (coordinates typed or computed to ~7 digits put a
+// block "on" a slope within that), each pair once, as adjacency lists.
+std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
+  const std::size_t n = bodies.size();
+  std::vector<detail::BroadPhaseBox> inflated(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    detail::BroadPhaseBox box = bounding_box(states[i].vertices);
+    const double margin = resting_gap * bodies[i].perimeter;
+    box.xmin -= margin;
+    box.ymin -= margin;
+    box.xmax += margin;
+    box.ymax += margin;
+    box.fixed = states[i].fixed;
+    inflated[i] = box;
+  }
+  std::vector<BlockPair> near;
+  if (n <= broad_phase_threshold) {
+    detail::all_pairs(inflated, near);
+  } else {
+    detail::UniformGrid().find_pairs(inflated, near);
+  }
+  std::vector<std::vector<std::size_t>> adjacent(n);
+  for (const auto& [i, j] : near) {
+    const double gap = resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter);
+    for (const kernel::ConvexPolygon& a : bodies[i].parts.polygons) {
+      for (const kernel::ConvexPolygon& b : bodies[j].parts.polygons) {
+        const kernel::EntranceBlock e = kernel::compute_entrance_block<kernel::Filtered>(a, b);
+        if (e.status == kernel::Overlap::separate && e.distance > gap) continue;
+        adjacent[i].push_back(j);  // once per resting pair of parts
+        adjacent[j].push_back(i);
+      }
+    }
+  }
+  return adjacent;
+}
+
+void Dda2d::Impl::settle() {
+  // The blocks connected to a support through the pairs resting on each other at t = 0.
+  const std::size_t n = bodies.size();
+  const std::vector<std::vector<std::size_t>> adjacent = resting_pairs();
+  std::vector<char> moving(n, 0);
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (states[i].fixed) queue.push_back(i);
+  }
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    for (const std::size_t j : adjacent[queue[k]]) {
+      if (states[j].fixed || moving[j]) continue;
+      moving[j] = 1;
+      queue.push_back(j);
+    }
+  }
+  double reference = 0.0;
+  const double g = std::hypot(params.gravity.x, params.gravity.y);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (moving[i]) reference = std::max(reference, states[i].mass * g);
+  }
+  for (const ContactState& c : contacts) {
+    if (moving[c.cp] || moving[c.tp]) {
+      reference = std::max(reference, std::hypot(c.normal_force.x, c.normal_force.y));
+    }
+  }
+  if (reference == 0.0) return;  // nothing loads the blocks in contact
+  equilibrium.ran = true;
+  equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
+
+  // Relaxation with h = 1: M' = (omega_i / 1.6)² M keeps every block at omega' h = 1.6, with
+  // omega_i² bounding the block's row of M^-1 K over all the contacts it can have here
+  // (Gershgorin: its own stiffness and, as much again, its neighbours' coupling): the normal
+  // springs of all its contacts lie along its boundary, kn / H times at most twice its perimeter
+  // (both faces of each thin overlap); each resting pair of parts adds one tangential spring.
+  // The critical-step estimate's single-pair bound is not enough in a packed assembly.
+  double kn = 0.0, kt = 0.0;
+  for (const PairLaw& l : laws) {
+    kn = std::max(kn, l.normal.kn);
+    if (l.friction) kt = std::max(kt, l.friction->kt);
+  }
+  std::vector<double> mass_scale(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!moving[i]) continue;
+    const Body& b = bodies[i];
+    const double springs = 2.0 * kn / law.normal.H * b.perimeter +
+                           static_cast<double>(adjacent[i].size()) * kt;
+    const double omega2 = b.elastic_omega2 + 2.0 * b.compliance * springs;
+    mass_scale[i] = omega2 / (relaxation_omega_h * relaxation_omega_h);
+  }
+  settling = true;
+  std::vector<Vector6> velocity(n, Vector6{});
+  std::size_t worst = 0;
+  for (;; ++equilibrium.iterations) {
+    equilibrium.ratio = out_of_balance(moving, reference, worst);
+    if (equilibrium.ratio < params.equilibrium_tolerance) break;
+    if (equilibrium.iterations == relaxation_iterations) {
+      throw StabilityError(
+          "dda2d: the initial equilibrium was not reached in " + std::to_string(relaxation_iterations) +
+          " relaxation iterations: the out-of-balance force ratio is " + number(equilibrium.ratio) +
+          " (tolerance " + number(params.equilibrium_tolerance) + "), largest at " +
+          block_name(states[worst].id) +
+          "; check that the blocks in contact at the start rest on a support, or set "
+          "initial_equilibrium to false");
+    }
+    for (Body& b : bodies) b.increment = {};
+    for_each_movable([&](std::size_t i) {
+      if (!moving[i]) return;
+      Body& b = bodies[i];
+      for (std::size_t k = 0; k < 6; ++k) {
+        const double v = velocity[i][k];
+        if (v != 0.0) b.force[k] -= std::copysign(local_damping * std::fabs(b.force[k]), v);
+      }
+      solve_acceleration(i);
+      for (std::size_t k = 0; k < 6; ++k) {
+        velocity[i][k] += b.acceleration[k] / mass_scale[i];
+        b.increment[k] = velocity[i][k];
+      }
+    });
+    advance_friction_records();
+    for_each_movable([&](std::size_t i) {
+      if (moving[i]) move(i);
+    });
+    evaluate_forces();
+  }
+  settling = false;
+  for (Body& b : bodies) b.increment = {};
+  // Released: the forces under the real friction law, and the energies counted from here.
+  evaluate_forces();
+  contact_work = friction_dissipated = damping_dissipated = dashpot_dissipated = 0.0;
+  for (std::size_t i = 0; i < n; ++i) bodies[i].initial_centroid = states[i].centroid;
 }
 
 // ---- the step ----------------------------------------------------------------------------
@@ -757,6 +981,13 @@ Vector2 Dda2d::Impl::point_increment(std::size_t i, Point2 p) const {
   return {d[0] + (c * sx - s * sy) - rx, d[1] + (s * sx + c * sy) - ry};
 }
 
+// Velocity of the material point at p (current position) of block i: T(p) d' (eq. 3).
+Vector2 Dda2d::Impl::point_velocity(std::size_t i, Point2 p) const {
+  if (states[i].fixed) return {};
+  const Point2& o = states[i].centroid;
+  return detail::transform({p.x - o.x, p.y - o.y}, states[i].velocity);
+}
+
 void Dda2d::Impl::advance_friction_records() {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (contact_records[k] == nullptr) continue;  // a frictionless interface
@@ -764,14 +995,15 @@ void Dda2d::Impl::advance_friction_records() {
     const Vector2 a = point_increment(c.cp, c.point), b = point_increment(c.tp, c.point);
     const Vector2 relative{a.x - b.x, a.y - b.y};
     contact::FrictionState& record = *contact_records[k];
-    if (record.sliding) {
+    const FrictionLaw& friction_law = *laws[law_index(c.cp, c.tp)].friction;
+    if (friction_law.model == contact::FrictionModel::paper && record.sliding) {
       const double fn = std::hypot(c.normal_force.x, c.normal_force.y);
       const double nx = c.normal_force.x / fn, ny = c.normal_force.y / fn;
       const double along = relative.x * nx + relative.y * ny;
       const double slip = std::hypot(relative.x - along * nx, relative.y - along * ny);
       friction_dissipated += std::hypot(c.friction_force.x, c.friction_force.y) * slip;
     }
-    contact::advance_friction(record, relative);
+    contact::advance_friction(record, relative, friction_law);
   }
 }
 
@@ -850,17 +1082,26 @@ void Dda2d::Impl::check_state() {
   }
 }
 
+// Half of the trapezoid rule's work against the contact forces (and their dashpots) over the
+// step: called with the forces at t_n and again with those at t_n+1.
+void Dda2d::Impl::record_work() {
+  for (const Body& b : bodies) {
+    contact_work -= 0.5 * dot6(b.contact_force, b.increment);
+    dashpot_dissipated -= 0.5 * dot6(b.dashpot_force, b.increment);
+  }
+}
+
 void Dda2d::Impl::advance() {
   // Messages during the step name the step being taken and the time it reaches.
   ++steps;
   time = static_cast<double>(steps) * params.dt;
   for (Body& b : bodies) b.damped = 0.0;
   for_each_movable([this](std::size_t i) { first_half_kick(i); });
-  for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
+  record_work();
   advance_friction_records();
   for_each_movable([this](std::size_t i) { move(i); });
   evaluate_forces();
-  for (const Body& b : bodies) contact_work -= 0.5 * dot6(b.contact_force, b.increment);
+  record_work();
   for_each_movable([this](std::size_t i) { second_half_kick(i); });
   for (const Body& b : bodies) damping_dissipated += b.damped;  // in block order: deterministic
   check_state();
@@ -880,9 +1121,9 @@ Energies Dda2d::Impl::energies() const {
       e.strain += 0.5 * s.area * sigma.dot(b.flexibility * sigma);
     }
   }
-  e.contact = contact_work - friction_dissipated;
+  e.contact = contact_work - friction_dissipated - dashpot_dissipated;
   e.friction_dissipated = friction_dissipated;
-  e.damping_dissipated = damping_dissipated;
+  e.damping_dissipated = damping_dissipated + dashpot_dissipated;
   return e;
 }
 
@@ -912,6 +1153,7 @@ const std::string& Dda2d::critical_time_step_source() const noexcept {
   return impl_->critical_source;
 }
 double Dda2d::max_penetration() const noexcept { return impl_->max_penetration; }
+const Equilibrium& Dda2d::initial_equilibrium() const noexcept { return impl_->equilibrium; }
 kernel::PredicateCounters Dda2d::predicate_counters() const noexcept { return impl_->counters; }
 
 }  // namespace rockcontact::dynamics

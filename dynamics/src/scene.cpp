@@ -24,6 +24,8 @@ constexpr JsonField scene_fields[] = {
     {"gravity", false, "the gravity [gx, gy] in m/s², two finite numbers"},
     {"plane", false, "one of \"stress\", \"strain\""},
     {"damping", false, "the mass damping alpha in 1/s, a finite number >= 0"},
+    {"initial_equilibrium", false,
+     "true or false: settle the contacts present at the start before the run (default true)"},
     {"materials", true,
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
     {"contact", true, "an object {\"law\", \"kn\", \"H\", ...}"},
@@ -51,6 +53,10 @@ constexpr JsonField contact_fields[] = {
     {"H", true, "the potential length scale H: a length in m > 0, \"mean_edge\" or \"inscribed\""},
     {"kt", false, "the tangential penalty kt in N/m, a finite number > 0"},
     {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
+    {"friction", false,
+     "the friction law, one of \"elastoplastic\", \"paper\" (with kt and friction_angle_deg)"},
+    {"cohesion", false, "the cohesion in Pa, a finite number >= 0 (with kt and friction_angle_deg)"},
+    {"damping_ratio", false, "the contact dashpots' critical damping ratio, a finite number >= 0"},
     {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
     {"demarcation", false, "one of \"paper\", \"exact\""},
 };
@@ -83,6 +89,7 @@ constexpr JsonField interface_fields[] = {
     {"kn", false, "the normal penalty kn in Pa, a finite number > 0 (default contact.kn)"},
     {"kt", false, "the tangential penalty kt in N/m, a finite number > 0 (default contact.kt)"},
     {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
+    {"cohesion", false, "the cohesion in Pa, a finite number >= 0 (default contact.cohesion)"},
 };
 constexpr JsonField boundary_fields[] = {
     {"id", true, "a non-empty string, unique among blocks and boundaries"},
@@ -178,6 +185,11 @@ class SceneParser {
       scene.params.mass_damping = reader_.non_negative(document.at("damping"), "damping",
                                                        expected(scene_fields, "damping"));
     }
+    if (document.contains("initial_equilibrium")) {
+      scene.params.initial_equilibrium =
+          reader_.boolean(document.at("initial_equilibrium"), "initial_equilibrium",
+                          expected(scene_fields, "initial_equilibrium"));
+    }
   }
 
   void materials(const json& value) {
@@ -199,6 +211,10 @@ class SceneParser {
     law.normal.kn = reader_.positive(value.at("kn"), "contact.kn", expected(contact_fields, "kn"));
     h(value.at("H"), scene);
     friction(value, law);
+    if (value.contains("damping_ratio")) {
+      law.damping_ratio = reader_.non_negative(value.at("damping_ratio"), "contact.damping_ratio",
+                                               expected(contact_fields, "damping_ratio"));
+    }
     if (value.contains("policy")) {
       law.policy = reader_.choice(value.at("policy"), "contact.policy",
                                   expected(contact_fields, "policy"), &kernel::parse_policy);
@@ -418,7 +434,16 @@ class SceneParser {
   void friction(const json& value, ContactLaw& law) const {
     const bool has_kt = value.contains("kt");
     const bool has_phi = value.contains("friction_angle_deg");
-    if (!has_kt && !has_phi) return;
+    if (!has_kt && !has_phi) {
+      for (const std::string_view field : {"friction", "cohesion"}) {
+        if (value.contains(field)) {
+          reader_.fail(json_child("contact", field),
+                       "a friction parameter of frictionless contact; give kt and "
+                       "friction_angle_deg beside it, or leave it out");
+        }
+      }
+      return;
+    }
     if (has_kt != has_phi) {
       const std::string_view missing = has_kt ? "friction_angle_deg" : "kt";
       reader_.fail(json_child("contact", missing),
@@ -434,6 +459,15 @@ class SceneParser {
     if (!(friction.friction_angle_deg < 90.0)) {
       reader_.fail_expected("contact.friction_angle_deg", phi_expected,
                             value.at("friction_angle_deg"));
+    }
+    if (value.contains("friction")) {
+      friction.model = reader_.choice(value.at("friction"), "contact.friction",
+                                      expected(contact_fields, "friction"),
+                                      &contact::parse_friction_model);
+    }
+    if (value.contains("cohesion")) {
+      friction.cohesion = reader_.non_negative(value.at("cohesion"), "contact.cohesion",
+                                               expected(contact_fields, "cohesion"));
     }
     law.friction = friction;
   }
@@ -517,7 +551,8 @@ class SceneParser {
 
   Interface interface(const json& value, const std::string& path, const ContactLaw& law) const {
     reader_.check_object(value, path,
-                         "an interface {\"between\", \"kn\", \"kt\", \"friction_angle_deg\"}",
+                         "an interface {\"between\", \"kn\", \"kt\", \"friction_angle_deg\", "
+                         "\"cohesion\"}",
                          interface_fields);
     Interface face;
     const json& groups = value.at("between");
@@ -531,7 +566,9 @@ class SceneParser {
                                                       expected(interface_fields, "kn"))
                                    : law.normal.kn;
     face.friction = law.friction;
-    if (!value.contains("kt") && !value.contains("friction_angle_deg")) return face;
+    if (!value.contains("kt") && !value.contains("friction_angle_deg") && !value.contains("cohesion")) {
+      return face;
+    }
     FrictionLaw friction = law.friction.value_or(FrictionLaw{});
     friction.kt = interface_value(value, path, "kt", law.friction.has_value(), friction.kt);
     friction.friction_angle_deg = interface_value(value, path, "friction_angle_deg",
@@ -541,11 +578,13 @@ class SceneParser {
                             expected(interface_fields, "friction_angle_deg"),
                             value.at("friction_angle_deg"));
     }
+    friction.cohesion = interface_value(value, path, "cohesion", law.friction.has_value(), friction.cohesion);
     face.friction = friction;
     return face;
   }
 
-  // kt or friction_angle_deg of an interface: its own (finite, >= 0; kt > 0), else the scene's.
+  // kt, friction_angle_deg or cohesion of an interface: its own (finite, >= 0; kt > 0), else the
+  // scene's.
   double interface_value(const json& value, const std::string& path, std::string_view field,
                          bool has_default, double fallback) const {
     const std::string field_path = json_child(path, field);

@@ -259,6 +259,10 @@ ordered_json run_summary(const Scene& scene, const RunReport& report) {
   out["predicates"] = {{"calls", report.predicates.total_calls()},
                        {"fallbacks", report.predicates.total_fallbacks()}};
   out["max_penetration"] = report.max_penetration;
+  const Equilibrium& e = report.equilibrium;
+  out["initial_equilibrium"] =
+      e.ran ? ordered_json{{"blocks", e.blocks}, {"iterations", e.iterations}, {"ratio", e.ratio}}
+            : ordered_json(nullptr);
   ordered_json ids = ordered_json::array();
   for (const BlockSpec& b : scene.blocks) ids.push_back(b.id);
   out["blocks"] = std::move(ids);
@@ -273,6 +277,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   clock::duration output_time{};
   RunReport report;
   Dda2d simulation(scene.blocks, scene.law, scene.params);
+  report.equilibrium = simulation.initial_equilibrium();
   std::optional<SceneRecorder> recorder;
   const auto timed = [&](auto&& write) {
     const auto t0 = clock::now();

@@ -207,13 +207,24 @@ BOOST_AUTO_TEST_CASE(paper_parameter_sets_are_accepted) {
 // The penetration monitor: a rigid 1 m square resting on a fixed base under gravity with a
 // contact far too soft for its weight (kn = 1e4 Pa: the static overlap would be
 // m g H / (2 kn L) = 0.98 m) sinks; once the minimum translation distance passes half the
-// smaller inradius (0.25 m) the step throws, naming both blocks and the numbers.
+// smaller inradius (0.25 m) the step throws, naming both blocks and the numbers. Released as
+// placed (no initial-equilibrium pre-solve), so that the steps are what sinks it; with the
+// pre-solve the relaxation sinks it and the constructor throws the same diagnosis.
 BOOST_AUTO_TEST_CASE(penetration_deeper_than_half_the_inradius_stops_the_run) {
   BlockSpec base = block("base", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}});
   base.fixed = true;
   BlockSpec box = block("box", square(-0.5, 0, 1));
   box.rigid = true;
-  Dda2d sim({base, box}, frictionless(1.0e4), params(1.0e-4, {0.0, -9.81}));
+  try {
+    Dda2d settled({base, box}, frictionless(1.0e4), params(1.0e-4, {0.0, -9.81}));
+    BOOST_FAIL("the pre-solve sank the box without a StabilityError");
+  } catch (const StabilityError& e) {
+    BOOST_TEST_MESSAGE(e.what());
+    BOOST_TEST(message_has(e, "block 'base' and block 'box' overlap by"));
+  }
+  DdaParams released = params(1.0e-4, {0.0, -9.81});
+  released.initial_equilibrium = false;
+  Dda2d sim({base, box}, frictionless(1.0e4), released);
   try {
     while (sim.steps() < 10000) sim.step();
     BOOST_FAIL("the box sank without a StabilityError");

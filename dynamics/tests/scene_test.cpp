@@ -16,6 +16,7 @@
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;
+namespace contact = rockcontact::contact;
 using nlohmann::json;
 
 namespace {
@@ -142,6 +143,8 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_documented_defaults) {
   BOOST_TEST(scene.every == 100u);
   BOOST_TEST(!scene.blocks[1].fixed);
   BOOST_TEST(scene.blocks[1].velocity.x == 0.0);
+  BOOST_TEST(scene.params.initial_equilibrium);
+  BOOST_TEST(scene.law.damping_ratio == 0.0);
 
   document["plane"] = "strain";
   document["damping"] = 0.5;
@@ -264,6 +267,44 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
   expect_error([](json& d) { d["contact"]["policy"] = "fast"; }, "contact.policy",
                R"(one of "float", "filtered", "exact")");
   expect_error([](json& d) { d["contact"]["mu"] = 0.3; }, "contact.mu", "unknown field");
+  expect_error([](json& d) { d["contact"]["friction"] = "coulomb"; }, "contact.friction",
+               R"(one of "elastoplastic", "paper" (with kt and friction_angle_deg), got string "coulomb")");
+  expect_error([](json& d) { d["contact"]["cohesion"] = -1.0; }, "contact.cohesion",
+               "the cohesion in Pa, a finite number >= 0");
+  expect_error([](json& d) { d["contact"]["damping_ratio"] = -0.1; }, "contact.damping_ratio",
+               "the contact dashpots' critical damping ratio, a finite number >= 0");
+  expect_error([](json& d) { d["initial_equilibrium"] = "yes"; }, "initial_equilibrium",
+               "true or false");
+  expect_error(
+      [](json& d) {
+        d["contact"].erase("kt");
+        d["contact"].erase("friction_angle_deg");
+        d["contact"]["friction"] = "paper";
+      },
+      "contact.friction", "a friction parameter of frictionless contact");
+}
+
+// The friction law, cohesion, contact damping and the pre-solve switch as the scene gives them;
+// the law defaults to elastoplastic, and an interface takes its own cohesion or the scene's.
+BOOST_AUTO_TEST_CASE(friction_law_cohesion_and_damping_fields) {
+  json document = contract_scene();
+  BOOST_TEST((dyn::parse_scene(document, "c.json").law.friction->model ==
+              contact::FrictionModel::elastoplastic));
+  document["contact"]["friction"] = "paper";
+  document["contact"]["cohesion"] = 2.5e4;
+  document["contact"]["damping_ratio"] = 0.1;
+  document["initial_equilibrium"] = false;
+  document["blocks"][0]["group"] = "base";
+  document["interfaces"] = json::parse(R"([{"between": ["base", "base"], "cohesion": 1e3}])");
+  const dyn::Scene scene = dyn::parse_scene(document, "c.json");
+  BOOST_TEST((scene.law.friction->model == contact::FrictionModel::paper));
+  BOOST_TEST(scene.law.friction->cohesion == 2.5e4);
+  BOOST_TEST(scene.law.damping_ratio == 0.1);
+  BOOST_TEST(!scene.params.initial_equilibrium);
+  BOOST_TEST_REQUIRE(scene.law.interfaces.size() == 1u);
+  BOOST_TEST(scene.law.interfaces[0].friction->cohesion == 1e3);
+  BOOST_TEST(scene.law.interfaces[0].friction->friction_angle_deg == 10.0);
+  BOOST_TEST((scene.law.interfaces[0].friction->model == contact::FrictionModel::paper));
 }
 
 BOOST_AUTO_TEST_CASE(block_errors) {

@@ -1,14 +1,16 @@
 #pragma once
-// Explicit 2D DDA with potential contact and Coulomb friction (seed 000 §2, §3.2.4-§3.3).
+// Explicit 2D DDA with potential contact, Coulomb friction and contact damping (seed 000 §2,
+// §3.2.4-§3.3).
 //
 // Each block carries d = (u0, v0, r0, ex, ey, gxy) (eq. 2): centroid translation, rotation and
 // constant strain, with u(x, y) = T(x, y) d (eq. 3). Per step, from t_n to t_n+1 = t_n + h:
 //   1. contacts: broad phase (a uniform grid above 8 blocks, every pair below) ->
 //      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp),
 //      measured for all candidate pairs in parallel (OpenMP), then assembled in pair order;
-//      tangential force by Coulomb stick/slide on the accumulated relative displacement of pg
-//      (eq. 24-26, contact/friction.hpp); f = f_n + f_t applied as T(xg, yg)^T f to CP and its
-//      negative to TP (eq. 22-23, 28-29). For a pair of blocks (i, j), i < j, CP is block i;
+//      tangential force from the relative displacement of pg (contact/friction.hpp: the
+//      elastoplastic law by default, the paper's eq. 24-26 on request); the contact dashpot f_d
+//      (below); f = f_n + f_t + f_d applied as T(xg, yg)^T f to CP and its negative to TP
+//      (eq. 22-23, 28-29). For a pair of blocks (i, j), i < j, CP is block i;
 //   2. F = gravity (m g on u0, v0) + contact + initial-stress force (-S sigma on ex, ey, gxy:
 //      K d folded into F as a step initial stress, §2.3); M d'' = F with M = rho ∫ T^T T dA
 //      from the polygon's central moments (eq. 5a; the translation block decouples);
@@ -23,6 +25,19 @@
 //      under the same map (§3.2.6).
 // Rigid blocks carry 3 DOF and skip every strain term; fixed blocks (§3.3 virtual polygons)
 // take part in contact only. Frictionless laws keep no tangential state at all.
+//
+// ## Contact damping (not in seed 000)
+// With a critical damping ratio zeta > 0 every contact carries a viscous dashpot on the relative
+// velocity v of pg (CP's material point minus TP's, v = T d' of each block at pg):
+//   f_d = -c_n (v . n) n - c_t (v - (v . n) n),   c = 2 zeta sqrt(m k)
+// with n the unit normal force direction, m = m_i m_j / (m_i + m_j) the pair's reduced mass (the
+// movable block's mass against a fixed one), k_n = 2 kn L / H the normal stiffness of a
+// face-on-face overlap of length L (L = half the IP's perimeter, see the critical step below)
+// and k_t = kt. The tangential dashpot acts only while the friction sticks (a sliding contact's
+// shear force is the Coulomb limit alone). The force at t_n+1 uses the velocities d'_{n+1/2} of
+// the step (the full-step velocities are not known before the force), the usual explicit DEM
+// dashpot; its work is reported as damping dissipation. A dashpot lowers the stability limit of
+// a spring-mass pair to 2 / omega (sqrt(1 + zeta²) - zeta), applied to the whole estimate.
 //
 // ## Non-convex blocks
 // A non-convex block is split exactly into convex parts (kernel::convex_partition: the block's
@@ -44,6 +59,30 @@
 //     energy and kinetic energy (the paper accumulates sigma in fixed axes);
 //   * mass damping (eq. 5c, off by default as in the paper) is integrated implicitly in the
 //     second half kick, d'_{n+1} = (d'_{n+1/2} + h/2 M^-1 F_{n+1}) / (1 + alpha h/2).
+//
+// ## Initial equilibrium (not in seed 000)
+// A block released at zero tangential stretch under gravity is not in equilibrium: its springs
+// load from zero, overshoot to twice the static load and, when that overshoot exceeds the
+// friction limit, slide; a block on a slope then creeps downhill although phi > theta. Block
+// codes settle the initial contact forces first, and so does the constructor (unless
+// DdaParams::initial_equilibrium is false): the blocks connected to a fixed block through pairs
+// resting on each other at t = 0 (overlapping, touching, or apart by at most 10⁻⁶ of the smaller
+// perimeter, so that a block typed "on" a slope to 7 digits counts) are relaxed into static
+// equilibrium with gravity and their stresses, with every tangential spring locked (no slip),
+// and then released with their initial velocities. Blocks that start apart are untouched. The method is dynamic relaxation:
+// fictitious time steps of h = 1 with each block's mass scaled so that a Gershgorin bound of its
+// stiffness over all the contacts it can have gives omega h = 0.8, Cundall's local damping (each
+// generalized force component reduced by 0.8 |F_k| against the motion of its degree of freedom),
+// until the out-of-balance force ratio
+//   R = max_i |F_i| / F_ref,   |F_i|² = F_x² + F_y² + (F_r0² + F_ex² + F_ey² + F_gxy²) / r_i²
+// (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest block
+// weight or normal contact force at the start, whichever is larger) is below the tolerance. The iterations
+// do not depend on the scene's dt (each block relaxes at its own stability limit) but grow with
+// the ratio of the stiffest to the softest mode: ~7 000 for a block on a slope (0.1 to 20 m),
+// ~15 000 for a 205-block jointed rock mass 13 blocks high, each costing about a step. The friction records keep the locked stretch: the run starts with
+// the static tangential forces already in the springs. The time, the energies and their
+// reference positions start after it. A pre-solve that does not converge within 10⁵ iterations
+// is an error naming the ratio and the block most out of balance.
 //
 // ## Critical time step
 // Velocity Verlet is stable for h < 2 / omega_max. The estimate of omega_max (documented
@@ -138,6 +177,7 @@ struct Interface {
 struct ContactLaw {
   contact::PotentialContactParams normal;  // kn, H and demarcation of every pair
   std::optional<FrictionLaw> friction;  // empty: frictionless, no tangential state is kept
+  double damping_ratio = 0.0;           // zeta of the contact dashpots, finite >= 0 (0: none)
   kernel::PolicyKind policy = kernel::PolicyKind::filtered;
   // Per pair of groups: kn and friction (H and the demarcation stay those of `normal`). At most
   // one interface per pair of groups.
@@ -152,6 +192,18 @@ struct DdaParams {
   // Threads of the contact pass (0: one per core). The result does not depend on it: every
   // candidate pair is measured independently and the contacts are assembled in pair order.
   std::size_t threads = 0;
+  // Bring the contacts present at the start into static equilibrium with the loads before the
+  // run ("Initial equilibrium" above), to an out-of-balance force ratio below the tolerance.
+  bool initial_equilibrium = true;
+  double equilibrium_tolerance = 1.0e-6;  // in (0, 1)
+};
+
+// What the initial-equilibrium pre-solve did.
+struct Equilibrium {
+  bool ran = false;            // some blocks started in contact with a support
+  std::size_t blocks = 0;      // blocks it moved
+  std::size_t iterations = 0;  // relaxation iterations
+  double ratio = 0.0;          // the out-of-balance force ratio it reached
 };
 
 struct BlockState {
@@ -176,6 +228,7 @@ struct ContactState {
   Point2 point;              // contact point pg, m
   Vector2 normal_force;      // on CP, N/m; on TP the opposite
   Vector2 friction_force;    // on CP, N/m; on TP the opposite; zero when frictionless
+  Vector2 damping_force;     // the dashpot's, on CP, N/m; on TP the opposite; zero without one
   bool sliding = false;      // the friction force is at the Coulomb limit
   double penetration = 0.0;  // minimum translation distance that separates the pair, m
 };
@@ -186,13 +239,17 @@ struct Energies {
   double kinetic = 0.0;        // ½ d'^T M d' summed over blocks
   double gravitational = 0.0;  // -m g·(c - c_0) summed over blocks: relative to the start
   double strain = 0.0;         // ½ S sigma^T E^-1 sigma summed over deformable blocks
-  // Work done against the contact forces since the start, minus friction_dissipated: the
-  // energy held by the normal and stick penalty springs. Accumulated per step as
-  // -½ (F_c(t_n) + F_c(t_n+1))·Δd over the blocks (trapezoid in time, F_c the generalized
-  // contact force), so it is zero at the start even for blocks that start overlapping.
+  // Work done against the contact forces since the start, minus friction_dissipated and the
+  // dashpots' share of damping_dissipated: the energy held by the normal and tangential penalty
+  // springs. Accumulated per step as -½ (F_c(t_n) + F_c(t_n+1))·Δd over the blocks (trapezoid
+  // in time, F_c the generalized contact force), so it is zero at the start even for blocks
+  // that start overlapping.
   double contact = 0.0;
-  double friction_dissipated = 0.0;  // Σ |f_t|·|tangential slip increment| over sliding steps
-  double damping_dissipated = 0.0;   // kinetic energy removed by the mass damping
+  // Energy the friction slip dissipated: paper law Σ |f_t|·|tangential slip increment| over
+  // sliding steps; elastoplastic law the return mapping's (contact/friction.hpp).
+  double friction_dissipated = 0.0;
+  // Kinetic energy removed by the mass damping plus the work done against the contact dashpots.
+  double damping_dissipated = 0.0;
   double total() const {
     return kinetic + gravitational + strain + contact + friction_dissipated + damping_dissipated;
   }
@@ -228,6 +285,7 @@ class Dda2d {
   // limits it.
   const std::string& critical_time_step_source() const noexcept;
   double max_penetration() const noexcept;     // largest minimum-translation distance seen, m
+  const Equilibrium& initial_equilibrium() const noexcept;
   kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
 
  private:

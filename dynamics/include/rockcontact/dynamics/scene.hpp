@@ -8,12 +8,20 @@
 //    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
 //    "plane": "stress" | "strain"                         (optional, default stress)
 //    "damping": alpha 1/s >= 0                            (optional, default 0: eq. 5c off)
+//    "initial_equilibrium": bool                          (optional, default true: the
+//                                                          contacts at the start are settled
+//                                                          first, dda2d.hpp)
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
 //                         "poisson_ratio": -1 < nu < 0.5}, ...},
 //    "contact": {"law": "potential", "kn": Pa > 0,
 //                "H": m > 0 | "mean_edge" | "inscribed",
 //                "kt": N/m > 0, "friction_angle_deg": 0 <= phi < 90   (both or neither;
 //                                                                       neither: frictionless)
+//                "friction": "elastoplastic" | "paper"  (optional, default elastoplastic;
+//                                                        contact/friction.hpp)
+//                "cohesion": Pa >= 0                    (optional, default 0)
+//                "damping_ratio": zeta >= 0             (optional, default 0: no contact
+//                                                        dashpots; dda2d.hpp)
 //                "policy": "float" | "filtered" | "exact"          (optional, default filtered)
 //                "demarcation": "paper" | "exact"},                (optional, default exact)
 //    "blocks": [{"id": unique string, "material": a name of "materials",
@@ -34,8 +42,10 @@
 //                    "gap": m >= 0 (with length)}, ...]    (optional, with "region";
 //                                                          kernel/block_cutting.hpp)
 //    "interfaces": [{"between": [group, group], "kn": Pa > 0, "kt": N/m > 0,
-//                    "friction_angle_deg": [0, 90)}, ...] (optional; what an interface
-//                                                          leaves out comes from "contact")
+//                    "friction_angle_deg": [0, 90), "cohesion": Pa >= 0}, ...]
+//                                                         (optional; what an interface leaves
+//                                                          out comes from "contact", the
+//                                                          friction law always does)
 //    "boundaries": [{"id": unique among blocks and boundaries, "material": a name,
 //                    "from": [x, y] m, "to": [x, y] m, "depth": m > 0 (default |to - from|),
 //                    "group": a name (default "")},

@@ -79,6 +79,7 @@ struct RunReport {
   double output_seconds = 0.0;            // wall, writing files
   kernel::PredicateCounters predicates;   // spent by this simulation
   std::size_t frames = 0;                 // VTK frames written
+  Equilibrium equilibrium;                // what the initial-equilibrium pre-solve did
 };
 
 // The summary.json document of a run (keys in this order): scene, description, status,
@@ -86,7 +87,9 @@ struct RunReport {
 // critical_time_step_source, H, H_rule, wall_seconds, simulation_seconds,
 // output_seconds, energy {start, end} each {kinetic, gravitational, strain, contact,
 // friction_dissipated, damping_dissipated, total}, predicates {calls, fallbacks},
-// max_penetration, blocks [ids in frame order], tracked [ids], frames.
+// max_penetration, initial_equilibrium {blocks, iterations, ratio} (null when no block started
+// in contact with a support or the scene turned it off), blocks [ids in frame order],
+// tracked [ids], frames.
 nlohmann::ordered_json run_summary(const Scene& scene, const RunReport& report);
 
 struct RunOptions {
