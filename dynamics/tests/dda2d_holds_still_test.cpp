@@ -10,7 +10,7 @@
 //     rock's E = 1e10 Pa), kt = 1e9 N/m, H = a (the block's size), dt = half the critical step
 //     the engine estimates, capped at 1e-4 s. With the paper's law and no pre-solve the 1 m
 //     block slid 230 mm in 1 s (the spring loads from zero, overshoots the limit and ratchets);
-//     measured now: < 1e-5 m for all three.
+//     measured now: 5e-11, 8e-10 and 4e-6 m.
 // (2) Five 1 m squares stacked with 1 mm alternating offsets on a fixed floor, phi = 30°: each
 //     must move < 1 mm in 10 s (measured ~1e-9 m).
 // (3) The contact dashpot of damping ratio zeta: a rigid 1 m square released at zero overlap on

@@ -78,7 +78,7 @@
 // (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest block
 // weight or normal contact force at the start, whichever is larger) is below the tolerance. The iterations
 // do not depend on the scene's dt (each block relaxes at its own stability limit) but grow with
-// the ratio of the stiffest to the softest mode: ~7 000 for a block on a slope (0.1 to 20 m),
+// the ratio of the stiffest to the softest mode: ~10 000 for a block on a slope (0.1 to 20 m),
 // ~15 000 for a 205-block jointed rock mass 13 blocks high, each costing about a step. The friction records keep the locked stretch: the run starts with
 // the static tangential forces already in the springs. The time, the energies and their
 // reference positions start after it. A pre-solve that does not converge within 10⁵ iterations
