@@ -770,7 +770,8 @@ double Dda2d::Impl::out_of_balance(const std::vector<char>& moving, double refer
 
 // The pairs of blocks resting on each other at the start: overlapping, touching, or apart by at
 // most resting_gap of the smaller perimeter (coordinates typed or computed to ~7 digits put a
-// block "on" a slope within that), each pair once, as adjacency lists.
+// block "on" a slope within that), as adjacency lists with a block's neighbour listed once per
+// resting pair of their parts.
 std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
   const std::size_t n = bodies.size();
   std::vector<detail::BroadPhaseBox> inflated(n);
@@ -835,7 +836,8 @@ void Dda2d::Impl::settle() {
   equilibrium.ran = true;
   equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
 
-  // Relaxation with h = 1: M' = (omega_i / 1.6)² M keeps every block at omega' h = 1.6, with
+  // Relaxation with h = 1: M' = (omega_i / relaxation_omega_h)² M keeps every block at
+  // omega' h = relaxation_omega_h, with
   // omega_i² bounding the block's row of M^-1 K over all the contacts it can have here
   // (Gershgorin: its own stiffness and, as much again, its neighbours' coupling): the normal
   // springs of all its contacts lie along its boundary, kn / H times at most twice its perimeter
