@@ -207,9 +207,16 @@ int run_run(const RunArgs& options) {
   std::cout << "scene: " << scene.source << '\n'
             << "steps: " << report.steps << " (t = " << report.time << " s), wall "
             << report.simulation_seconds + report.output_seconds << " s (simulation "
-            << report.simulation_seconds << " s)\n"
-            << "energy: total " << report.initial.total() << " J/m at the start, "
-            << report.final.total() << " J/m at the end\n"
+            << report.simulation_seconds << " s)\n";
+  if (scene.params.analysis == dyn::Analysis::static_equilibrium) {
+    std::cout << "static: " << (report.converged ? "converged" : "not converged") << ", out-of-balance ratio "
+              << (report.balance.empty() ? 0.0 : report.balance.back().second) << " (tolerance "
+              << scene.static_tolerance << ")\n";
+  } else {
+    std::cout << "energy: total " << report.initial.total() << " J/m at the start, "
+              << report.final.total() << " J/m at the end\n";
+  }
+  std::cout
             << "predicates: " << report.predicates.total_calls() << " calls, "
             << report.predicates.total_fallbacks() << " exact fallbacks; largest penetration "
             << report.max_penetration << " m\n"

@@ -215,13 +215,18 @@ struct Dda2d::Impl {
   Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params);
 
   void advance();
+  void static_step();
   Energies energies() const;
 
   // Construction.
   void add_block(const BlockSpec& spec);
   void estimate_critical_step();
   void settle();
+  void start_static_analysis();
   std::vector<std::vector<std::size_t>> resting_pairs() const;
+  void prepare_relaxation(std::vector<char> moving, const std::vector<std::vector<std::size_t>>& adjacent);
+  void relax_once();
+  double balance_ratio() const;
   double out_of_balance(const std::vector<char>& moving, double reference, std::size_t& worst) const;
   double gyration_squared(std::size_t i) const;
   // Geometry-dependent data after the vertices moved.
@@ -298,6 +303,13 @@ struct Dda2d::Impl {
   double max_penetration = 0.0;
   bool settling = false;  // inside settle(): tangential springs locked, no dashpots
   Equilibrium equilibrium;
+  // The dynamic relaxation of the pre-solve and of the static analysis (dda2d.hpp).
+  struct Relaxation {
+    std::vector<char> moving;       // the blocks it moves
+    std::vector<double> mass_scale;  // M' / M per block
+    std::vector<Vector6> velocity;  // fictitious, per unit step
+    double reference = 0.0;         // F_ref of the out-of-balance ratio, N/m
+  } relaxation;
   kernel::PredicateCounters counters;
 };
 
@@ -334,6 +346,7 @@ Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParam
   estimate_critical_step();
   evaluate_forces();
   if (params.initial_equilibrium) settle();
+  if (params.analysis == Analysis::static_equilibrium) start_static_analysis();
   const Energies e = energies();
   initial_total = e.total();
   double floor = 0.0;
@@ -806,13 +819,12 @@ std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
   return adjacent;
 }
 
-void Dda2d::Impl::settle() {
-  // The blocks connected to a support through the pairs resting on each other at t = 0.
-  const std::size_t n = bodies.size();
-  const std::vector<std::vector<std::size_t>> adjacent = resting_pairs();
-  std::vector<char> moving(n, 0);
+// The blocks connected to a support through the pairs resting on each other at t = 0.
+std::vector<char> supported(const std::vector<std::vector<std::size_t>>& adjacent,
+                            const std::vector<BlockState>& states) {
+  std::vector<char> moving(states.size(), 0);
   std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < states.size(); ++i) {
     if (states[i].fixed) queue.push_back(i);
   }
   for (std::size_t k = 0; k < queue.size(); ++k) {
@@ -822,46 +834,83 @@ void Dda2d::Impl::settle() {
       queue.push_back(j);
     }
   }
-  double reference = 0.0;
+  return moving;
+}
+
+// Relaxation of the blocks in `moving` with h = 1: M' = (omega_i / relaxation_omega_h)² M keeps
+// every block at omega' h = relaxation_omega_h, with omega_i² bounding the block's row of M^-1 K
+// over all the contacts it can have (Gershgorin: its own stiffness and, as much again, its
+// neighbours' coupling): the normal springs of all its contacts lie along its boundary, kn / H
+// times at most twice its perimeter (both faces of each thin overlap); each resting pair of
+// parts adds one tangential spring. The critical-step estimate's single-pair bound is not
+// enough in a packed assembly. The reference force is the largest weight or normal contact
+// force among them (zero: nothing loads them).
+void Dda2d::Impl::prepare_relaxation(std::vector<char> moving,
+                                     const std::vector<std::vector<std::size_t>>& adjacent) {
+  const std::size_t n = bodies.size();
+  relaxation.moving = std::move(moving);
+  relaxation.velocity.assign(n, Vector6{});
+  relaxation.mass_scale.assign(n, 0.0);
+  relaxation.reference = 0.0;
   const double g = std::hypot(params.gravity.x, params.gravity.y);
   for (std::size_t i = 0; i < n; ++i) {
-    if (moving[i]) reference = std::max(reference, states[i].mass * g);
+    if (relaxation.moving[i]) relaxation.reference = std::max(relaxation.reference, states[i].mass * g);
   }
   for (const ContactState& c : contacts) {
-    if (moving[c.cp] || moving[c.tp]) {
-      reference = std::max(reference, std::hypot(c.normal_force.x, c.normal_force.y));
+    if (relaxation.moving[c.cp] || relaxation.moving[c.tp]) {
+      relaxation.reference = std::max(relaxation.reference, std::hypot(c.normal_force.x, c.normal_force.y));
     }
   }
-  if (reference == 0.0) return;  // nothing loads the blocks in contact
-  equilibrium.ran = true;
-  equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
-
-  // Relaxation with h = 1: M' = (omega_i / relaxation_omega_h)² M keeps every block at
-  // omega' h = relaxation_omega_h, with
-  // omega_i² bounding the block's row of M^-1 K over all the contacts it can have here
-  // (Gershgorin: its own stiffness and, as much again, its neighbours' coupling): the normal
-  // springs of all its contacts lie along its boundary, kn / H times at most twice its perimeter
-  // (both faces of each thin overlap); each resting pair of parts adds one tangential spring.
-  // The critical-step estimate's single-pair bound is not enough in a packed assembly.
   double kn = 0.0, kt = 0.0;
   for (const PairLaw& l : laws) {
     kn = std::max(kn, l.normal.kn);
     if (l.friction) kt = std::max(kt, l.friction->kt);
   }
-  std::vector<double> mass_scale(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!moving[i]) continue;
+    if (!relaxation.moving[i]) continue;
     const Body& b = bodies[i];
     const double springs = 2.0 * kn / law.normal.H * b.perimeter +
                            static_cast<double>(adjacent[i].size()) * kt;
     const double omega2 = b.elastic_omega2 + 2.0 * b.compliance * springs;
-    mass_scale[i] = omega2 / (relaxation_omega_h * relaxation_omega_h);
+    relaxation.mass_scale[i] = omega2 / (relaxation_omega_h * relaxation_omega_h);
   }
+}
+
+// One relaxation iteration: Cundall's local damping on each generalized force component, a kick
+// of the scaled masses, the move, and the forces at the new configuration.
+void Dda2d::Impl::relax_once() {
+  for (Body& b : bodies) b.increment = {};
+  for_each_movable([&](std::size_t i) {
+    if (!relaxation.moving[i]) return;
+    Body& b = bodies[i];
+    Vector6& velocity = relaxation.velocity[i];
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (velocity[k] != 0.0) b.force[k] -= std::copysign(local_damping * std::fabs(b.force[k]), velocity[k]);
+    }
+    solve_acceleration(i);
+    for (std::size_t k = 0; k < 6; ++k) {
+      velocity[k] += b.acceleration[k] / relaxation.mass_scale[i];
+      b.increment[k] = velocity[k];
+    }
+  });
+  advance_friction_records();
+  for_each_movable([&](std::size_t i) {
+    if (relaxation.moving[i]) move(i);
+  });
+  evaluate_forces();
+}
+
+void Dda2d::Impl::settle() {
+  const std::vector<std::vector<std::size_t>> adjacent = resting_pairs();
+  prepare_relaxation(supported(adjacent, states), adjacent);
+  if (relaxation.reference == 0.0) return;
+  equilibrium.ran = true;
+  equilibrium.blocks = static_cast<std::size_t>(
+      std::count(relaxation.moving.begin(), relaxation.moving.end(), 1));
   settling = true;
-  std::vector<Vector6> velocity(n, Vector6{});
   std::size_t worst = 0;
   for (;; ++equilibrium.iterations) {
-    equilibrium.ratio = out_of_balance(moving, reference, worst);
+    equilibrium.ratio = out_of_balance(relaxation.moving, relaxation.reference, worst);
     if (equilibrium.ratio < params.equilibrium_tolerance) break;
     if (equilibrium.iterations == relaxation_iterations) {
       throw StabilityError(
@@ -872,32 +921,30 @@ void Dda2d::Impl::settle() {
           "; check that the blocks in contact at the start rest on a support, or set "
           "initial_equilibrium to false");
     }
-    for (Body& b : bodies) b.increment = {};
-    for_each_movable([&](std::size_t i) {
-      if (!moving[i]) return;
-      Body& b = bodies[i];
-      for (std::size_t k = 0; k < 6; ++k) {
-        const double v = velocity[i][k];
-        if (v != 0.0) b.force[k] -= std::copysign(local_damping * std::fabs(b.force[k]), v);
-      }
-      solve_acceleration(i);
-      for (std::size_t k = 0; k < 6; ++k) {
-        velocity[i][k] += b.acceleration[k] / mass_scale[i];
-        b.increment[k] = velocity[i][k];
-      }
-    });
-    advance_friction_records();
-    for_each_movable([&](std::size_t i) {
-      if (moving[i]) move(i);
-    });
-    evaluate_forces();
+    relax_once();
   }
   settling = false;
   for (Body& b : bodies) b.increment = {};
   // Released: the forces under the real friction law, and the energies counted from here.
   evaluate_forces();
   contact_work = friction_dissipated = damping_dissipated = dashpot_dissipated = 0.0;
-  for (std::size_t i = 0; i < n; ++i) bodies[i].initial_centroid = states[i].centroid;
+  for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].initial_centroid = states[i].centroid;
+}
+
+// Static analysis: every movable block relaxes, under the scene's friction law.
+void Dda2d::Impl::start_static_analysis() {
+  std::vector<char> moving(bodies.size(), 0);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    moving[i] = !states[i].fixed;
+    states[i].velocity = {};
+  }
+  prepare_relaxation(std::move(moving), resting_pairs());
+}
+
+double Dda2d::Impl::balance_ratio() const {
+  if (params.analysis != Analysis::static_equilibrium || relaxation.reference == 0.0) return 0.0;
+  std::size_t worst = 0;
+  return out_of_balance(relaxation.moving, relaxation.reference, worst);
 }
 
 // ---- the step ----------------------------------------------------------------------------
@@ -1093,6 +1140,13 @@ void Dda2d::Impl::record_work() {
   }
 }
 
+// A step of the static analysis: one relaxation iteration; the blocks' velocities stay zero.
+void Dda2d::Impl::static_step() {
+  ++steps;
+  time = static_cast<double>(steps) * params.dt;
+  relax_once();
+}
+
 void Dda2d::Impl::advance() {
   // Messages during the step name the step being taken and the time it reaches.
   ++steps;
@@ -1142,8 +1196,14 @@ Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params) {
 
 void Dda2d::step() {
   const CountInto count(impl_->counters);
-  impl_->advance();
+  if (impl_->params.analysis == Analysis::static_equilibrium) {
+    impl_->static_step();
+  } else {
+    impl_->advance();
+  }
 }
+
+double Dda2d::balance_ratio() const { return impl_->balance_ratio(); }
 
 double Dda2d::time() const noexcept { return impl_->time; }
 std::size_t Dda2d::steps() const noexcept { return impl_->steps; }

@@ -26,6 +26,9 @@ constexpr JsonField scene_fields[] = {
     {"damping", false, "the mass damping alpha in 1/s, a finite number >= 0"},
     {"initial_equilibrium", false,
      "true or false: settle the contacts present at the start before the run (default true)"},
+    {"analysis", false, "one of \"dynamic\", \"static\""},
+    {"static_tolerance", false,
+     "the out-of-balance force ratio at which a static analysis stops, a number in (0, 1)"},
     {"materials", true,
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
     {"contact", true, "an object {\"law\", \"kn\", \"H\", ...}"},
@@ -114,6 +117,12 @@ std::optional<PlaneMode> parse_plane(std::string_view text) {
   return std::nullopt;
 }
 
+std::optional<Analysis> parse_analysis(std::string_view text) {
+  if (text == "dynamic") return Analysis::dynamic;
+  if (text == "static") return Analysis::static_equilibrium;
+  return std::nullopt;
+}
+
 std::optional<HRule> parse_h_rule(std::string_view text) {
   if (text == "mean_edge") return HRule::mean_edge;
   if (text == "inscribed") return HRule::inscribed;
@@ -184,6 +193,17 @@ class SceneParser {
     if (document.contains("damping")) {
       scene.params.mass_damping = reader_.non_negative(document.at("damping"), "damping",
                                                        expected(scene_fields, "damping"));
+    }
+    if (document.contains("analysis")) {
+      scene.params.analysis = reader_.choice(document.at("analysis"), "analysis",
+                                             expected(scene_fields, "analysis"), &parse_analysis);
+    }
+    if (document.contains("static_tolerance")) {
+      const std::string_view what = expected(scene_fields, "static_tolerance");
+      scene.static_tolerance = reader_.positive(document.at("static_tolerance"), "static_tolerance", what);
+      if (!(scene.static_tolerance < 1.0)) {
+        reader_.fail_expected("static_tolerance", what, document.at("static_tolerance"));
+      }
     }
     if (document.contains("initial_equilibrium")) {
       scene.params.initial_equilibrium =

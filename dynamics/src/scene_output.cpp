@@ -263,6 +263,15 @@ ordered_json run_summary(const Scene& scene, const RunReport& report) {
   out["initial_equilibrium"] =
       e.ran ? ordered_json{{"blocks", e.blocks}, {"iterations", e.iterations}, {"ratio", e.ratio}}
             : ordered_json(nullptr);
+  if (scene.params.analysis == Analysis::static_equilibrium) {
+    ordered_json history = ordered_json::array();
+    for (const auto& [step, ratio] : report.balance) history.push_back({step, ratio});
+    out["static"] = {{"tolerance", scene.static_tolerance},
+                     {"converged", report.converged},
+                     {"iterations", report.steps},
+                     {"ratio", report.balance.empty() ? 0.0 : report.balance.back().second},
+                     {"history", std::move(history)}};
+  }
   ordered_json ids = ordered_json::array();
   for (const BlockSpec& b : scene.blocks) ids.push_back(b.id);
   out["blocks"] = std::move(ids);
@@ -284,7 +293,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     write();
     output_time += clock::now() - t0;
   };
+  const bool static_analysis = scene.params.analysis == Analysis::static_equilibrium;
   const auto record = [&] {
+    if (static_analysis) report.balance.emplace_back(simulation.steps(), simulation.balance_ratio());
     if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks()); });
   };
   // Fills the report from the simulation as it stands and completes the files.
@@ -317,8 +328,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     for (std::size_t s = 1; s <= total; ++s) {
       simulation.step();
       if (options.observer) options.observer(simulation);
-      if (s % scene.every == 0 || s == total) record();
+      report.converged = static_analysis && simulation.balance_ratio() < scene.static_tolerance;
+      if (s % scene.every == 0 || s == total || report.converged) record();
       if (options.progress) options.progress(s, total);
+      if (report.converged) break;
     }
   } catch (const StabilityError& e) {
     report.status = "stopped";

@@ -147,3 +147,39 @@ BOOST_AUTO_TEST_CASE(contact_dashpot_decays_by_the_damped_oscillator_decrement) 
   }
   BOOST_TEST(sim.energies().damping_dissipated > 0.0);
 }
+
+// (4) Static analysis (Analysis::static_equilibrium) on a column of four rigid 1 m squares
+//     placed exactly touching on a fixed floor, released unloaded (no pre-solve): it relaxes
+//     until the out-of-balance ratio is below 1e-9, and each contact then carries the weight of
+//     the blocks above it, k m g for the k-th interface from the top (statics of the column).
+//     The ratio bounds each block's unbalanced force by 1e-9 of a weight, so the contact forces,
+//     summed from the top, are within 4e-9 m g: bound 1e-8 relative. No block moves sideways.
+BOOST_AUTO_TEST_CASE(static_analysis_of_a_column_carries_the_weights_above) {
+  std::vector<BlockSpec> blocks{block("floor", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}}, true)};
+  constexpr int count = 4;
+  for (int k = 0; k < count; ++k) {
+    BlockSpec b = block("b" + std::to_string(k), square(-0.5, k, 1.0));
+    b.rigid = true;
+    blocks.push_back(b);
+  }
+  DdaParams params = testing::params(1e-4, {0.0, -g});
+  params.analysis = Analysis::static_equilibrium;
+  params.initial_equilibrium = false;
+  Dda2d sim(blocks, frictional(1e9, 1e9, 30.0, 1.0), params);
+  while (sim.balance_ratio() >= 1e-9 || sim.steps() == 0) {
+    BOOST_TEST_REQUIRE(sim.steps() < 100000u);
+    sim.step();
+  }
+  BOOST_TEST_MESSAGE("static: ratio " << sim.balance_ratio() << " after " << sim.steps() << " steps");
+  const double weight = sim.blocks()[1].mass * g;
+  BOOST_TEST_REQUIRE(sim.contacts().size() == static_cast<std::size_t>(count));
+  for (const ContactState& c : sim.contacts()) {
+    const double carried = static_cast<double>(count - c.cp) * weight;  // blocks c.tp .. count
+    const Vector2 f{c.normal_force.x + c.friction_force.x, c.normal_force.y + c.friction_force.y};
+    BOOST_TEST_CONTEXT("contact " << c.cp << "-" << c.tp) {
+      BOOST_TEST(std::fabs(-f.y / carried - 1.0) <= 1e-8);  // on CP (below) the force points down
+      BOOST_TEST(std::fabs(f.x) <= 1e-8 * carried);
+    }
+  }
+  for (const BlockState& s : sim.blocks()) BOOST_TEST(std::fabs(s.centroid.x) <= 1e-12);
+}

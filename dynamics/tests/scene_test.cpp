@@ -145,6 +145,8 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_documented_defaults) {
   BOOST_TEST(scene.blocks[1].velocity.x == 0.0);
   BOOST_TEST(scene.params.initial_equilibrium);
   BOOST_TEST(scene.law.damping_ratio == 0.0);
+  BOOST_TEST((scene.params.analysis == dyn::Analysis::dynamic));
+  BOOST_TEST(scene.static_tolerance == 1e-6);
 
   document["plane"] = "strain";
   document["damping"] = 0.5;
@@ -275,6 +277,12 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
                "the contact dashpots' critical damping ratio, a finite number >= 0");
   expect_error([](json& d) { d["initial_equilibrium"] = "yes"; }, "initial_equilibrium",
                "true or false");
+  expect_error([](json& d) { d["analysis"] = "quasi-static"; }, "analysis",
+               R"(one of "dynamic", "static", got string "quasi-static")");
+  expect_error([](json& d) { d["static_tolerance"] = 0.0; }, "static_tolerance",
+               "a number in (0, 1)");
+  expect_error([](json& d) { d["static_tolerance"] = 1.0; }, "static_tolerance",
+               "a number in (0, 1)");
   expect_error(
       [](json& d) {
         d["contact"].erase("kt");
@@ -284,7 +292,8 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
       "contact.friction", "a friction parameter of frictionless contact");
 }
 
-// The friction law, cohesion, contact damping and the pre-solve switch as the scene gives them;
+// The friction law, cohesion, contact damping, the pre-solve switch and the static analysis as
+// the scene gives them;
 // the law defaults to elastoplastic, and an interface takes its own cohesion or the scene's.
 BOOST_AUTO_TEST_CASE(friction_law_cohesion_and_damping_fields) {
   json document = contract_scene();
@@ -294,6 +303,8 @@ BOOST_AUTO_TEST_CASE(friction_law_cohesion_and_damping_fields) {
   document["contact"]["cohesion"] = 2.5e4;
   document["contact"]["damping_ratio"] = 0.1;
   document["initial_equilibrium"] = false;
+  document["analysis"] = "static";
+  document["static_tolerance"] = 1e-4;
   document["blocks"][0]["group"] = "base";
   document["interfaces"] = json::parse(R"([{"between": ["base", "base"], "cohesion": 1e3}])");
   const dyn::Scene scene = dyn::parse_scene(document, "c.json");
@@ -301,6 +312,8 @@ BOOST_AUTO_TEST_CASE(friction_law_cohesion_and_damping_fields) {
   BOOST_TEST(scene.law.friction->cohesion == 2.5e4);
   BOOST_TEST(scene.law.damping_ratio == 0.1);
   BOOST_TEST(!scene.params.initial_equilibrium);
+  BOOST_TEST((scene.params.analysis == dyn::Analysis::static_equilibrium));
+  BOOST_TEST(scene.static_tolerance == 1e-4);
   BOOST_TEST_REQUIRE(scene.law.interfaces.size() == 1u);
   BOOST_TEST(scene.law.interfaces[0].friction->cohesion == 1e3);
   BOOST_TEST(scene.law.interfaces[0].friction->friction_angle_deg == 10.0);

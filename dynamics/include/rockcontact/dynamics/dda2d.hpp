@@ -84,6 +84,14 @@
 // reference positions start after it. A pre-solve that does not converge within 10⁵ iterations
 // is an error naming the ratio and the block most out of balance.
 //
+// ## Static analysis (Analysis::static_equilibrium)
+// The same relaxation as a run of its own: every movable block, the scene's friction law (a
+// contact beyond its limit slips), one iteration per step, until the caller finds
+// balance_ratio() below its tolerance. It replaces Shi's static analysis (a dynamic step with the
+// velocities zeroed after each), which at the scene's dt needs ~10⁶ steps for a 20 m block:
+// the relaxation steps each block at its own stability limit and damps without losing the
+// motion towards equilibrium. Velocities are zero throughout; the energies are not meaningful.
+//
 // ## Critical time step
 // Velocity Verlet is stable for h < 2 / omega_max. The estimate of omega_max (documented
 // conservative bounds, computed once at construction; the message of a rejection names the
@@ -150,6 +158,11 @@ struct Material {
 
 enum class PlaneMode { stress, strain };
 
+// dynamic: the explicit DDA. static_equilibrium: each step is one iteration of the relaxation of
+// "Initial equilibrium" over every movable block, under the scene's friction law (contacts may
+// slip); the blocks' velocities stay zero and time only counts the steps.
+enum class Analysis { dynamic, static_equilibrium };
+
 struct BlockSpec {
   std::string id;                // non-empty, unique; names the block in every message
   // CCW, simple, no repeated or collinear vertex, m. A non-convex block is split exactly into
@@ -196,6 +209,7 @@ struct DdaParams {
   // run ("Initial equilibrium" above), to an out-of-balance force ratio below the tolerance.
   bool initial_equilibrium = true;
   double equilibrium_tolerance = 1.0e-6;  // in (0, 1)
+  Analysis analysis = Analysis::dynamic;
 };
 
 // What the initial-equilibrium pre-solve did.
@@ -286,6 +300,9 @@ class Dda2d {
   const std::string& critical_time_step_source() const noexcept;
   double max_penetration() const noexcept;     // largest minimum-translation distance seen, m
   const Equilibrium& initial_equilibrium() const noexcept;
+  // Static analysis: the out-of-balance force ratio R of "Initial equilibrium" over the movable
+  // blocks at the current instant (0 when nothing loads them). Dynamic analysis: 0.
+  double balance_ratio() const;
   kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
 
  private:

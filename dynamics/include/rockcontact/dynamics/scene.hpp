@@ -8,6 +8,11 @@
 //    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
 //    "plane": "stress" | "strain"                         (optional, default stress)
 //    "damping": alpha 1/s >= 0                            (optional, default 0: eq. 5c off)
+//    "analysis": "dynamic" | "static"                     (optional, default dynamic; static:
+//                                                          relax to equilibrium, dda2d.hpp)
+//    "static_tolerance": 0 < R < 1                        (optional, default 1e-6: the static
+//                                                          run stops below this out-of-balance
+//                                                          force ratio)
 //    "initial_equilibrium": bool                          (optional, default true: the
 //                                                          contacts at the start are settled
 //                                                          first, dda2d.hpp)
@@ -106,6 +111,7 @@ struct Scene {
   HRule h_rule = HRule::given;
   std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
   std::size_t every = 100;         // record tracks and frames every `every` steps
+  double static_tolerance = 1.0e-6;  // static analysis: stop below this out-of-balance ratio
 };
 
 // The number of steps that covers the duration: duration / dt rounded up, except that a ratio

@@ -80,6 +80,10 @@ struct RunReport {
   kernel::PredicateCounters predicates;   // spent by this simulation
   std::size_t frames = 0;                 // VTK frames written
   Equilibrium equilibrium;                // what the initial-equilibrium pre-solve did
+  // Static analysis: the out-of-balance force ratio at every recorded step (step, ratio), and
+  // whether it fell below the scene's static_tolerance.
+  std::vector<std::pair<std::size_t, double>> balance;
+  bool converged = false;
 };
 
 // The summary.json document of a run (keys in this order): scene, description, status,
@@ -88,8 +92,11 @@ struct RunReport {
 // output_seconds, energy {start, end} each {kinetic, gravitational, strain, contact,
 // friction_dissipated, damping_dissipated, total}, predicates {calls, fallbacks},
 // max_penetration, initial_equilibrium {blocks, iterations, ratio} (null when no block started
-// in contact with a support or the scene turned it off), blocks [ids in frame order],
-// tracked [ids], frames.
+// in contact with a support or the scene turned it off), [static {tolerance, converged,
+// iterations, ratio, history [[step, ratio], ...] at every recorded step} for a static
+// analysis], blocks [ids in frame order], tracked [ids], frames. A static analysis stops at the
+// first step whose ratio is below the tolerance, or at the duration's step count (status
+// "completed" either way; "converged" says which).
 nlohmann::ordered_json run_summary(const Scene& scene, const RunReport& report);
 
 struct RunOptions {
