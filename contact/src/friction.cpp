@@ -90,10 +90,6 @@ FrictionResult elastoplastic_friction(const FrictionState& state, Vector2 normal
 
 }  // namespace
 
-std::string_view to_string(FrictionModel model) {
-  return model == FrictionModel::paper ? "paper" : "elastoplastic";
-}
-
 std::optional<FrictionModel> parse_friction_model(std::string_view text) {
   if (text == "elastoplastic") return FrictionModel::elastoplastic;
   if (text == "paper") return FrictionModel::paper;

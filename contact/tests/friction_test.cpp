@@ -39,6 +39,30 @@ FrictionLaw law30() { return {1.0e7, 30.0, 0.0, FrictionModel::paper}; }
 FrictionLaw elastoplastic30() { return {1.0e7, 30.0}; }
 const double limit30 = 100.0 * std::tan(std::numbers::pi / 6.0);
 
+// One step of a loading history under the normal (0, 100): the increment of CP relative to TP
+// applied before the evaluation (m), and what the evaluation must find.
+struct HistoryRow {
+  double increment;
+  double force;  // friction force x on CP, N/m
+  bool sliding;
+  double dissipated = 0.0;  // J/m
+};
+
+// Runs the rows through advance -> evaluate -> commit, as the integrator calls them.
+void check_history(const FrictionLaw& law, const std::vector<HistoryRow>& rows) {
+  FrictionState state;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    advance_friction(state, {rows[k].increment, 0.0}, law);
+    const FrictionResult r = evaluate_friction(state, {0.0, 100.0}, law);
+    BOOST_TEST_CONTEXT("row " << k) {
+      BOOST_TEST(r.sliding == rows[k].sliding);
+      BOOST_TEST(close(r.force, {rows[k].force, 0.0}, limit30));
+      BOOST_TEST(close(r.dissipated, rows[k].dissipated, 1e-4));
+    }
+    commit_friction(state, r);
+  }
+}
+
 }  // namespace
 
 // Normal (0, 100): d = (1e-6, 2e-6) splits into d_nor = (0, 2e-6) and d_tan = (1e-6, 0);
@@ -136,24 +160,13 @@ BOOST_AUTO_TEST_CASE(degenerate_inputs) {
 //   -1e-6: d = -1e-6       -> +10       stick (reversal, eq. 25)
 //   -1e-6: d = -2e-6       -> +20       stick (accumulates again)
 BOOST_AUTO_TEST_CASE(loading_sliding_and_reversal_history) {
-  struct Row {
-    double increment;  // applied before the evaluation, m
-    double force;      // expected friction force x on CP, N/m
-    bool sliding;
-  };
-  const std::vector<Row> rows{{0.0, 0.0, false},   {2e-6, -20.0, false},    {2e-6, -40.0, false},
-                              {2e-6, -limit30, true}, {2e-6, -limit30, true}, {-1e-6, 10.0, false},
-                              {-1e-6, 20.0, false}};
-  FrictionState state;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    advance_friction(state, {rows[k].increment, 0.0}, law30());
-    const FrictionResult r = evaluate_friction(state, {0.0, 100.0}, law30());
-    BOOST_TEST_CONTEXT("row " << k) {
-      BOOST_TEST(r.sliding == rows[k].sliding);
-      BOOST_TEST(close(r.force, {rows[k].force, 0.0}, limit30));
-    }
-    commit_friction(state, r);
-  }
+  check_history(law30(), {{0.0, 0.0, false},
+                          {2e-6, -20.0, false},
+                          {2e-6, -40.0, false},
+                          {2e-6, -limit30, true},
+                          {2e-6, -limit30, true},
+                          {-1e-6, 10.0, false},
+                          {-1e-6, 20.0, false}});
 }
 
 BOOST_AUTO_TEST_CASE(bad_laws_are_rejected_by_field) {
@@ -191,29 +204,13 @@ BOOST_AUTO_TEST_CASE(bad_laws_are_rejected_by_field) {
 // 1.1069e-5 J/m; the next, sliding on, limit × the plastic slip 2e-6 m = 1.1547e-4 J/m.
 BOOST_AUTO_TEST_CASE(elastoplastic_history_keeps_the_stretch_through_a_slip) {
   const double cap = limit30 / 1.0e7;
-  struct Row {
-    double increment, force;
-    bool sliding;
-    double dissipated;
-  };
-  const std::vector<Row> rows{{0.0, 0.0, false, 0.0},
-                              {2e-6, -20.0, false, 0.0},
-                              {2e-6, -40.0, false, 0.0},
-                              {2e-6, -limit30, true, 0.5e7 * (4e-6 + cap) * (6e-6 - cap)},
-                              {2e-6, -limit30, true, limit30 * 2e-6},
-                              {-1e-6, -1.0e7 * (cap - 1e-6), false, 0.0},
-                              {-1e-6, -1.0e7 * (cap - 2e-6), false, 0.0}};
-  FrictionState state;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    advance_friction(state, {rows[k].increment, 0.0}, elastoplastic30());
-    const FrictionResult r = evaluate_friction(state, {0.0, 100.0}, elastoplastic30());
-    BOOST_TEST_CONTEXT("row " << k) {
-      BOOST_TEST(r.sliding == rows[k].sliding);
-      BOOST_TEST(close(r.force, {rows[k].force, 0.0}, limit30));
-      BOOST_TEST(close(r.dissipated, rows[k].dissipated, 1e-4));
-    }
-    commit_friction(state, r);
-  }
+  check_history(elastoplastic30(), {{0.0, 0.0, false},
+                                    {2e-6, -20.0, false},
+                                    {2e-6, -40.0, false},
+                                    {2e-6, -limit30, true, 0.5e7 * (4e-6 + cap) * (6e-6 - cap)},
+                                    {2e-6, -limit30, true, limit30 * 2e-6},
+                                    {-1e-6, -1.0e7 * (cap - 1e-6), false},
+                                    {-1e-6, -1.0e7 * (cap - 2e-6), false}});
   // A sliding record accumulates: no reset.
   FrictionState sliding{{1e-6, 0.0}, true, {-10.0, 0.0}, {0.0, 1.0}};
   advance_friction(sliding, {0.5e-6, 0.0}, elastoplastic30());

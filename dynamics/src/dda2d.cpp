@@ -819,6 +819,8 @@ std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
   return adjacent;
 }
 
+namespace {
+
 // The blocks connected to a support through the pairs resting on each other at t = 0.
 std::vector<char> supported(const std::vector<std::vector<std::size_t>>& adjacent,
                             const std::vector<BlockState>& states) {
@@ -836,6 +838,8 @@ std::vector<char> supported(const std::vector<std::vector<std::size_t>>& adjacen
   }
   return moving;
 }
+
+}  // namespace
 
 // Relaxation of the blocks in `moving` with h = 1: M' = (omega_i / relaxation_omega_h)² M keeps
 // every block at omega' h = relaxation_omega_h, with omega_i² bounding the block's row of M^-1 K

@@ -63,7 +63,6 @@ using kernel::Vector2;
 
 enum class FrictionModel { elastoplastic, paper };
 
-std::string_view to_string(FrictionModel model);
 // "elastoplastic" or "paper"; nothing otherwise.
 std::optional<FrictionModel> parse_friction_model(std::string_view text);
 
@@ -98,7 +97,7 @@ struct FrictionResult {
   Vector2 force;         // tangential force on CP, N/m; on TP it is -force
   bool sliding = false;  // true when |force| is the limit |f_n| tan(phi) + c L
   Vector2 tangential;    // paper: d_tan of eq. 24b; elastoplastic: the stretch δ_t kept, m
-  double dissipated = 0.0;  // elastoplastic: energy the slip removed from the spring, J/m
+  double dissipated = 0.0;  // elastoplastic: the energy the slip dissipated (above), J/m
   FrictionState next;       // the record after this evaluation (commit_friction stores it)
 };
 

@@ -69,20 +69,21 @@
 // resting on each other at t = 0 (overlapping, touching, or apart by at most 10⁻⁶ of the smaller
 // perimeter, so that a block typed "on" a slope to 7 digits counts) are relaxed into static
 // equilibrium with gravity and their stresses, with every tangential spring locked (no slip),
-// and then released with their initial velocities. Blocks that start apart are untouched. The method is dynamic relaxation:
-// fictitious time steps of h = 1 with each block's mass scaled so that a Gershgorin bound of its
-// stiffness over all the contacts it can have gives omega h = 0.8, Cundall's local damping (each
-// generalized force component reduced by 0.8 |F_k| against the motion of its degree of freedom),
-// until the out-of-balance force ratio
+// and then released with their initial velocities. Blocks that start apart are untouched. The
+// method is dynamic relaxation: fictitious time steps of h = 1 with each block's mass scaled so
+// that a Gershgorin bound of its stiffness over all the contacts it can have gives omega h =
+// 0.8, Cundall's local damping (each generalized force component reduced by 0.8 |F_k| against
+// the motion of its degree of freedom), until the out-of-balance force ratio
 //   R = max_i |F_i| / F_ref,   |F_i|² = F_x² + F_y² + (F_r0² + F_ex² + F_ey² + F_gxy²) / r_i²
 // (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest block
-// weight or normal contact force at the start, whichever is larger) is below the tolerance. The iterations
-// do not depend on the scene's dt (each block relaxes at its own stability limit) but grow with
-// the ratio of the stiffest to the softest mode: ~10 000 for a block on a slope (0.1 to 20 m),
-// ~15 000 for a 205-block jointed rock mass 13 blocks high, each costing about a step. The friction records keep the locked stretch: the run starts with
-// the static tangential forces already in the springs. The time, the energies and their
-// reference positions start after it. A pre-solve that does not converge within 10⁵ iterations
-// is an error naming the ratio and the block most out of balance.
+// weight or normal contact force at the start, whichever is larger) is below the tolerance. The
+// iterations do not depend on the scene's dt (each block relaxes at its own stability limit) but
+// grow with the ratio of the stiffest to the softest mode: ~10 000 for a block on a slope (0.1
+// to 20 m), ~15 000 for a 205-block jointed rock mass 13 blocks high, each costing about a step.
+// The friction records keep the locked stretch: the run starts with the static tangential forces
+// already in the springs. The time, the energies and their reference positions start after it. A
+// pre-solve that does not converge within 10⁵ iterations is an error naming the ratio and the
+// block most out of balance.
 //
 // ## Static analysis (Analysis::static_equilibrium)
 // The same relaxation as a run of its own: every movable block, the scene's friction law (a
