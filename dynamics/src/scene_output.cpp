@@ -168,15 +168,20 @@ void write_svg(const fs::path& file, std::span<const BlockState> blocks,
   output.commit();
 }
 
+// The energy terms by name, in the order of summary.json and energies.csv.
+std::array<std::pair<const char*, double>, 7> energy_terms(const Energies& e) {
+  return {{{"kinetic", e.kinetic},
+           {"gravitational", e.gravitational},
+           {"strain", e.strain},
+           {"contact", e.contact},
+           {"friction_dissipated", e.friction_dissipated},
+           {"damping_dissipated", e.damping_dissipated},
+           {"total", e.total()}}};
+}
+
 ordered_json energies_json(const Energies& e) {
   ordered_json out;
-  out["kinetic"] = e.kinetic;
-  out["gravitational"] = e.gravitational;
-  out["strain"] = e.strain;
-  out["contact"] = e.contact;
-  out["friction_dissipated"] = e.friction_dissipated;
-  out["damping_dissipated"] = e.damping_dissipated;
-  out["total"] = e.total();
+  for (const auto& [name, value] : energy_terms(e)) out[name] = value;
   return out;
 }
 
@@ -198,9 +203,14 @@ SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
   if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
   tracks_.emplace(dir_ / "tracks.csv");
   tracks_->stream() << "t,block,x,y,rotation,vx,vy,omega\n";
+  energies_.emplace(dir_ / "energies.csv");
+  energies_->stream() << 't';
+  for (const auto& term : energy_terms(Energies{})) energies_->stream() << ',' << term.first;
+  energies_->stream() << '\n';
 }
 
-void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
+void SceneRecorder::record(double time, std::span<const BlockState> blocks,
+                           const Energies& energies) {
   for (const std::string& id : track_) {
     const auto it =
         std::find_if(blocks.begin(), blocks.end(), [&](const BlockState& b) { return b.id == id; });
@@ -211,6 +221,10 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
             << number(it->velocity[2]) << '\n';
   }
   if (!tracks_->stream()) throw OutputError("cannot write " + tracks_->target().string());
+  energies_->stream() << number(time);
+  for (const auto& term : energy_terms(energies)) energies_->stream() << ',' << number(term.second);
+  energies_->stream() << '\n';
+  if (!energies_->stream()) throw OutputError("cannot write " + energies_->target().string());
   std::string index = std::to_string(frames_.size());
   index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
   const std::string name = "frame_" + index + ".vtp";
@@ -220,6 +234,7 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks) {
 
 void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_json& summary) {
   tracks_->commit();
+  energies_->commit();
   AtomicFile pvd(dir_ / "frames.pvd");
   std::ostream& out = pvd.stream();
   out << "<?xml version=\"1.0\"?>\n"
@@ -296,7 +311,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const bool static_analysis = scene.params.analysis == Analysis::static_equilibrium;
   const auto record = [&] {
     if (static_analysis) report.balance.emplace_back(simulation.steps(), simulation.balance_ratio());
-    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks()); });
+    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks(), simulation.energies()); });
   };
   // Fills the report from the simulation as it stands and completes the files.
   const auto conclude = [&] {

@@ -4,6 +4,8 @@
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 #include <boost/test/unit_test.hpp>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -22,6 +24,12 @@ namespace pt = boost::property_tree;
 using nlohmann::json;
 
 namespace {
+
+// Shortest round-trip text of a double, as the outputs write it.
+std::string shortest(double x) {
+  std::array<char, 32> text{};
+  return {text.data(), std::to_chars(text.data(), text.data() + text.size(), x).ptr};
+}
 
 const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
 
@@ -181,9 +189,16 @@ BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
   blocks[2].vertices = {{3, 1}, {4, 1}, {3.5, 2}};
   {
     dyn::SceneRecorder recorder(scene, dir);
-    recorder.record(0.0, blocks);
-    recorder.record(0.1, blocks);
-    recorder.record(0.2, blocks);
+    dyn::Energies energies;
+    recorder.record(0.0, blocks, energies);
+    energies.kinetic = 0.5;
+    energies.gravitational = -2.0;
+    energies.contact = 1.25;
+    energies.friction_dissipated = 0.125;
+    energies.damping_dissipated = 0.0625;
+    recorder.record(0.1, blocks, energies);
+    energies.strain = 0.03125;
+    recorder.record(0.2, blocks, energies);
     BOOST_TEST(recorder.frames() == 3u);
     recorder.finish(blocks, json::object({{"status", "completed"}}));
   }
@@ -193,6 +208,15 @@ BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
   BOOST_TEST(count(csv, "\n") == 7u);
   BOOST_TEST(count(csv, "0.1,\"a, \"\"quoted\"\"\",1.5,1.5,0,0.25,-0.5,0.125\n") == 1u);
   BOOST_TEST(count(csv, "0.2,b<c>,3.5,1.5,0,0.25,-0.5,0.125\n") == 1u);
+
+  // One energies row per recorded instant, the terms in summary.json's order, total their sum
+  // (every value exact in binary).
+  const std::string energies = read_text(dir / "energies.csv");
+  BOOST_TEST(energies ==
+             "t,kinetic,gravitational,strain,contact,friction_dissipated,damping_dissipated,total\n"
+             "0,0,0,0,0,0,0,0\n"
+             "0.1,0.5,-2,0,1.25,0.125,0.0625,-0.0625\n"
+             "0.2,0.5,-2,0.03125,1.25,0.125,0.0625,-0.03125\n");
 
   const auto frames = read_pvd(dir / "frames.pvd");
   BOOST_TEST_REQUIRE(frames.size() == 3u);
@@ -361,6 +385,23 @@ BOOST_AUTO_TEST_CASE(two_block_run_writes_the_contract_outputs) {
   BOOST_TEST(summary.at("blocks") == json::array({"base", "slider"}));
   BOOST_TEST(summary.at("tracked") == json::array({"slider"}));
   BOOST_TEST(summary.at("wall_seconds").get<double>() >= 0.0);
+
+  // energies.csv: a row at each recorded instant; the first and the last are summary.json's
+  // start and end energies, to the bit.
+  std::istringstream energies(read_text(dir / "energies.csv"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(energies, line);) lines.push_back(line);
+  BOOST_TEST_REQUIRE(lines.size() == 6u);  // the header and 5 instants
+  const auto terms = [](const json& e, double t) {
+    std::string row = shortest(t);
+    for (const char* name : {"kinetic", "gravitational", "strain", "contact",
+                             "friction_dissipated", "damping_dissipated", "total"}) {
+      row += "," + shortest(e.at(name).get<double>());
+    }
+    return row;
+  };
+  BOOST_TEST(lines[1] == terms(summary.at("energy").at("start"), 0.0));
+  BOOST_TEST(lines[5] == terms(summary.at("energy").at("end"), report.time));
 }
 
 // The engine refuses a time step above its stability limit before anything is written.

@@ -5,6 +5,12 @@
 //                  (scene order), every `every` steps, at t = 0 and at the final time: centroid
 //                  (m), rotation since the start (rad, CCW), centroid velocity (m/s) and angular
 //                  velocity (rad/s). Doubles in shortest round-trip form.
+//   energies.csv   header exactly "t,kinetic,gravitational,strain,contact,friction_dissipated,
+//                  damping_dissipated,total": the energy terms of dda2d.hpp's Energies (J per m
+//                  of thickness, named as in summary.json) at the same instants as the track
+//                  rows. total stays at its start value up to the integrator's O(dt²) error,
+//                  so its drift is the balance's error. A static analysis writes them too,
+//                  though its fictitious motion gives them no physical meaning.
 //   frame_NNNN.vtp VTK XML PolyData, one polygon per block (scene order), written at the same
 //                  instants as the track rows; cell data: "block" (index in the scene),
 //                  "fixed" (0/1), "velocity" (vx, vy, 0) m/s, "omega" rad/s, "stress"
@@ -44,8 +50,8 @@ class SceneRecorder {
   // Throws OutputError when the directory or tracks.csv cannot be created.
   SceneRecorder(const Scene& scene, std::filesystem::path dir);
 
-  // Track rows and one frame of the state at `time` (s).
-  void record(double time, std::span<const BlockState> blocks);
+  // Track rows, an energies row and one frame of the state at `time` (s).
+  void record(double time, std::span<const BlockState> blocks, const Energies& energies);
 
   // frames.pvd, final.svg of `blocks`, summary.json; throws OutputError if one cannot be written.
   void finish(std::span<const BlockState> blocks, const nlohmann::ordered_json& summary);
@@ -61,7 +67,8 @@ class SceneRecorder {
   std::filesystem::path dir_;
   std::vector<std::string> track_;
   std::size_t frame_digits_;
-  std::optional<AtomicFile> tracks_;  // set in the constructor, once the directory exists
+  std::optional<AtomicFile> tracks_;    // set in the constructor, once the directory exists
+  std::optional<AtomicFile> energies_;  // likewise
   std::vector<Frame> frames_;
 };
 
