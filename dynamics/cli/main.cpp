@@ -142,6 +142,8 @@ void add_pairs(CLI::App& app, int& exit_status) {
 struct RunArgs {
   std::string scene;
   std::string out;
+  std::size_t checkpoint_every = 0;
+  std::string restart;
 };
 
 bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
@@ -186,6 +188,8 @@ int run_run(const RunArgs& options) {
   ProgressBar bar;
   dyn::RunOptions run_options;
   run_options.out_dir = options.out;
+  run_options.checkpoint_every = options.checkpoint_every;
+  run_options.restart = options.restart;
   run_options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   dyn::RunReport report;
   try {
@@ -204,7 +208,12 @@ int run_run(const RunArgs& options) {
               << options.out << '\n';
     return exit_bad_input;
   }
-  std::cout << "scene: " << scene.source << '\n'
+  std::cout << "scene: " << scene.source << '\n';
+  if (!report.restarted_from.empty()) {
+    std::cout << "restarted: from " << report.restarted_from.string() << " at step "
+              << report.restart_steps << '\n';
+  }
+  std::cout
             << "steps: " << report.steps << " (t = " << report.time << " s), wall "
             << report.simulation_seconds + report.output_seconds << " s (simulation "
             << report.simulation_seconds << " s)\n";
@@ -221,7 +230,8 @@ int run_run(const RunArgs& options) {
             << report.predicates.total_fallbacks() << " exact fallbacks; largest penetration "
             << report.max_penetration << " m\n"
             << "outputs: " << options.out << " (tracks.csv, " << report.frames
-            << " frames in frames.pvd, final.svg, summary.json)\n";
+            << " frames in frames.pvd, energies.csv, final.svg, summary.json"
+            << (options.checkpoint_every > 0 ? ", checkpoint.json" : "") << ")\n";
   return exit_ok;
 }
 
@@ -233,6 +243,10 @@ void add_run(CLI::App& app, int& exit_status) {
   sub->add_option("scene", options->scene, "Scene JSON (see dynamics/include/.../scene.hpp)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();
+  sub->add_option("--checkpoint-every", options->checkpoint_every,
+                  "Replace OUT/checkpoint.json with the full state every N steps (0: never)");
+  sub->add_option("--restart", options->restart,
+                  "Resume from a checkpoint.json of this scene (bit-identical continuation)");
   sub->callback([options, &exit_status] { exit_status = run_run(*options); });
 }
 

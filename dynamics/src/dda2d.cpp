@@ -212,7 +212,9 @@ struct Body {
 }  // namespace
 
 struct Dda2d::Impl {
-  Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params);
+  // `from`: resume that snapshot instead of starting (Dda2d's constructors).
+  Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params,
+       const Snapshot* from);
 
   void advance();
   void static_step();
@@ -220,6 +222,9 @@ struct Dda2d::Impl {
 
   // Construction.
   void add_block(const BlockSpec& spec);
+  void restore(const Snapshot& from);
+  Snapshot snapshot() const;
+  void rebuild_parts(std::size_t i);
   void estimate_critical_step();
   void settle();
   void start_static_analysis();
@@ -331,7 +336,8 @@ class CountInto {
 
 }  // namespace
 
-Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params)
+Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params,
+                  const Snapshot* from)
     : law(std::move(contact_law)), params(dda_params) {
   check_params(law, params);
   thread_count = params.threads == 0 ? omp_get_max_threads() : static_cast<int>(params.threads);
@@ -344,6 +350,10 @@ Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParam
   for (const BlockSpec& spec : specs) add_block(spec);
   resolve_groups(specs);
   estimate_critical_step();
+  if (from != nullptr) {
+    restore(*from);
+    return;
+  }
   evaluate_forces();
   if (params.initial_equilibrium) settle();
   if (params.analysis == Analysis::static_equilibrium) start_static_analysis();
@@ -1087,13 +1097,7 @@ void Dda2d::Impl::move(std::size_t i) {
     s.velocity[5] = 2.0 * rate[2];
   }
   try {
-    Parts& parts = b.parts;
-    for (std::size_t p = 0; p < parts.polygons.size(); ++p) {
-      std::vector<Point2> corners;
-      corners.reserve(parts.corners[p].size());
-      for (const std::size_t k : parts.corners[p]) corners.push_back(s.vertices[k]);
-      parts.polygons[p] = kernel::ConvexPolygon::make(parts.polygons[p].name(), std::move(corners));
-    }
+    rebuild_parts(i);
   } catch (const kernel::InvalidPolygon& e) {
     throw StabilityError(at_step() + block_name(s.id) + " is no longer a valid convex polygon (" +
                          e.what() + "); its strain increment was (" + number(d[3]) + ", " +
@@ -1101,6 +1105,18 @@ void Dda2d::Impl::move(std::size_t i) {
                          number(o.y));
   }
   refresh(i);
+}
+
+// The convex parts from the block's current vertices; throws kernel::InvalidPolygon when one is
+// no longer strictly convex.
+void Dda2d::Impl::rebuild_parts(std::size_t i) {
+  Parts& parts = bodies[i].parts;
+  for (std::size_t p = 0; p < parts.polygons.size(); ++p) {
+    std::vector<Point2> corners;
+    corners.reserve(parts.corners[p].size());
+    for (const std::size_t k : parts.corners[p]) corners.push_back(states[i].vertices[k]);
+    parts.polygons[p] = kernel::ConvexPolygon::make(parts.polygons[p].name(), std::move(corners));
+  }
 }
 
 void Dda2d::Impl::check_state() {
@@ -1187,16 +1203,144 @@ Energies Dda2d::Impl::energies() const {
   return e;
 }
 
+// ---- snapshots ---------------------------------------------------------------------------
+
+Snapshot Dda2d::Impl::snapshot() const {
+  Snapshot out;
+  out.time = time;
+  out.steps = steps;
+  out.blocks.reserve(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const BlockState& s = states[i];
+    const Body& b = bodies[i];
+    out.blocks.push_back({s.vertices, s.rotation, s.velocity, s.stress, b.initial_centroid,
+                          b.force, b.contact_force, b.dashpot_force, b.acceleration});
+  }
+  out.contacts = contacts;
+  for (const auto& [parts, record] : friction) {
+    out.springs.push_back({parts.cp, parts.tp, parts.cp_part, parts.tp_part, record.state});
+  }
+  if (params.analysis == Analysis::static_equilibrium) {
+    out.relaxation = {relaxation.moving, relaxation.mass_scale, relaxation.velocity,
+                      relaxation.reference};
+  }
+  out.contact_work = contact_work;
+  out.friction_dissipated = friction_dissipated;
+  out.mass_damping_dissipated = damping_dissipated;
+  out.dashpot_dissipated = dashpot_dissipated;
+  out.initial_total = initial_total;
+  out.initial_budget = initial_budget;
+  out.max_gravitational = max_gravitational;
+  out.max_penetration = max_penetration;
+  out.equilibrium = equilibrium;
+  out.predicates = counters;
+  return out;
+}
+
+namespace {
+
+void snapshot_misfit(const std::string& what) {
+  throw std::invalid_argument("dda2d: the snapshot does not fit these blocks: " + what);
+}
+
+}  // namespace
+
+// Takes over the state of `from` after the blocks were added (dda2d.hpp, Snapshot).
+void Dda2d::Impl::restore(const Snapshot& from) {
+  const std::size_t n = bodies.size();
+  if (from.blocks.size() != n) {
+    snapshot_misfit("it holds " + std::to_string(from.blocks.size()) + " blocks, the simulation " +
+                    std::to_string(n));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Snapshot::Block& b = from.blocks[i];
+    BlockState& s = states[i];
+    if (b.vertices.size() != s.vertices.size()) {
+      snapshot_misfit(block_name(s.id) + " has " + std::to_string(s.vertices.size()) +
+                      " vertices, the snapshot " + std::to_string(b.vertices.size()));
+    }
+    s.vertices = b.vertices;
+    s.rotation = b.rotation;
+    s.velocity = b.velocity;
+    s.stress = b.stress;
+    Body& body = bodies[i];
+    body.initial_centroid = b.reference_centroid;
+    body.force = b.force;
+    body.contact_force = b.contact_force;
+    body.dashpot_force = b.dashpot_force;
+    body.acceleration = b.acceleration;
+    try {
+      rebuild_parts(i);
+    } catch (const kernel::InvalidPolygon& e) {
+      snapshot_misfit(e.what());
+    }
+    refresh(i);
+  }
+  const auto check_parts = [&](std::size_t cp, std::size_t tp, std::size_t p, std::size_t q,
+                               const std::string& what) {
+    if (!(cp < tp && tp < n && p < bodies[cp].parts.polygons.size() &&
+          q < bodies[tp].parts.polygons.size())) {
+      snapshot_misfit(what + " names blocks " + std::to_string(cp) + " and " + std::to_string(tp) +
+                      " (parts " + std::to_string(p) + ", " + std::to_string(q) +
+                      "), which are not a pair of this simulation");
+    }
+  };
+  evaluations = 1;
+  for (const Snapshot::Spring& spring : from.springs) {
+    check_parts(spring.cp, spring.tp, spring.cp_part, spring.tp_part, "a spring");
+    friction[{spring.cp, spring.tp, spring.cp_part, spring.tp_part}] = {spring.state, evaluations};
+  }
+  contacts = from.contacts;
+  for (const ContactState& c : contacts) {
+    check_parts(c.cp, c.tp, c.cp_part, c.tp_part, "a contact");
+    contact::FrictionState* record = nullptr;
+    if (laws[law_index(c.cp, c.tp)].friction) {
+      const auto it = friction.find({c.cp, c.tp, c.cp_part, c.tp_part});
+      if (it == friction.end()) {
+        snapshot_misfit("the frictional contact of " + block_name(states[c.cp].id) + " and " +
+                        block_name(states[c.tp].id) + " has no spring");
+      }
+      record = &it->second.state;
+    }
+    contact_records.push_back(record);
+  }
+  if (params.analysis == Analysis::static_equilibrium) {
+    const Snapshot::Relaxation& r = from.relaxation;
+    if (r.moving.size() != n || r.mass_scale.size() != n || r.velocity.size() != n) {
+      snapshot_misfit("a static analysis needs the relaxation state of every block");
+    }
+    relaxation = {r.moving, r.mass_scale, r.velocity, r.reference};
+  }
+  time = from.time;
+  steps = from.steps;
+  contact_work = from.contact_work;
+  friction_dissipated = from.friction_dissipated;
+  damping_dissipated = from.mass_damping_dissipated;
+  dashpot_dissipated = from.dashpot_dissipated;
+  initial_total = from.initial_total;
+  initial_budget = from.initial_budget;
+  max_gravitational = from.max_gravitational;
+  max_penetration = from.max_penetration;
+  equilibrium = from.equilibrium;
+  counters = from.predicates;
+}
+
 // ---- public face -------------------------------------------------------------------------
 
 Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params) {
   kernel::PredicateCounters spent;
   {
     const CountInto count(spent);
-    impl_ = std::make_shared<Impl>(std::move(blocks), std::move(law), params);
+    impl_ = std::make_shared<Impl>(std::move(blocks), std::move(law), params, nullptr);
   }
   add_counters(impl_->counters, spent);
 }
+
+Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params,
+             const Snapshot& from)
+    : impl_(std::make_shared<Impl>(std::move(blocks), std::move(law), params, &from)) {}
+
+Snapshot Dda2d::snapshot() const { return impl_->snapshot(); }
 
 void Dda2d::step() {
   const CountInto count(impl_->counters);

@@ -823,6 +823,21 @@ double smallest_inscribed_radius(std::span<const BlockSpec> blocks) {
   return smallest;
 }
 
+std::uint64_t scene_digest(const json& document) {
+  json physics = document;
+  physics.erase("description");
+  physics.erase("output");
+  if (physics.contains("time") && physics["time"].is_object()) physics["time"].erase("duration");
+  // FNV-1a over the compact text; nlohmann::json keeps members sorted by name, so the text, and
+  // the digest, do not depend on the file's member order or spacing.
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (const char c : physics.dump()) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
 Scene parse_scene(const json& document, const std::string& source_name) {
   SceneParser parser(source_name);
   const JsonReader reader(source_name);
@@ -850,6 +865,7 @@ Scene parse_scene(const json& document, const std::string& source_name) {
   parser.boundaries(document, scene);
   parser.interfaces(document, scene);
   parser.output(document, scene);
+  scene.digest = scene_digest(document);
   return scene;
 }
 

@@ -10,6 +10,8 @@
 #include <system_error>
 #include <utility>
 
+#include "rockcontact/dynamics/checkpoint.hpp"
+
 namespace rockcontact::dynamics {
 
 namespace {
@@ -267,6 +269,11 @@ ordered_json run_summary(const Scene& scene, const RunReport& report) {
   out["critical_time_step_source"] = report.critical_time_step_source;
   out["H"] = scene.law.normal.H;
   out["H_rule"] = to_string(scene.h_rule);
+  if (!report.restarted_from.empty()) {
+    out["restart"] = {{"file", report.restarted_from.string()},
+                      {"steps", report.restart_steps},
+                      {"time", static_cast<double>(report.restart_steps) * scene.params.dt}};
+  }
   out["wall_seconds"] = report.simulation_seconds + report.output_seconds;
   out["simulation_seconds"] = report.simulation_seconds;
   out["output_seconds"] = report.output_seconds;
@@ -300,7 +307,17 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = clock::now();
   clock::duration output_time{};
   RunReport report;
-  Dda2d simulation(scene.blocks, scene.law, scene.params);
+  if (options.checkpoint_every > 0 && options.out_dir.empty()) {
+    throw std::invalid_argument("run_scene: checkpoints need an output directory");
+  }
+  std::optional<Checkpoint> resume;
+  if (!options.restart.empty()) {
+    resume = read_checkpoint(options.restart, scene);
+    report.restarted_from = options.restart;
+    report.restart_steps = resume->engine.steps;
+  }
+  Dda2d simulation = resume ? Dda2d(scene.blocks, scene.law, scene.params, resume->engine)
+                            : Dda2d(scene.blocks, scene.law, scene.params);
   report.equilibrium = simulation.initial_equilibrium();
   std::optional<SceneRecorder> recorder;
   const auto timed = [&](auto&& write) {
@@ -335,13 +352,19 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   };
 
   if (!options.out_dir.empty()) timed([&] { recorder.emplace(scene, options.out_dir); });
-  report.initial = simulation.energies();
+  report.initial = resume ? resume->initial : simulation.energies();
   record();
   if (options.observer) options.observer(simulation);
   const std::size_t total = step_count(scene);
   try {
-    for (std::size_t s = 1; s <= total; ++s) {
+    for (std::size_t s = simulation.steps() + 1; s <= total; ++s) {
       simulation.step();
+      if (options.checkpoint_every > 0 && s % options.checkpoint_every == 0) {
+        timed([&] {
+          write_checkpoint(options.out_dir / "checkpoint.json", scene,
+                           {scene.digest, report.initial, simulation.snapshot()});
+        });
+      }
       if (options.observer) options.observer(simulation);
       report.converged = static_analysis && simulation.balance_ratio() < scene.static_tolerance;
       if (s % scene.every == 0 || s == total || report.converged) record();

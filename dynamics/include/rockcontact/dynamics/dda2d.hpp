@@ -270,6 +270,48 @@ struct Energies {
   }
 };
 
+// Everything a simulation carries from one step to the next, so that a run resumed from it
+// (the Dda2d constructor taking a Snapshot) goes on bit-identically. What the geometry
+// determines (areas, centroids, mass matrices, convex parts, stability estimates) is not in it:
+// it is recomputed from the blocks as given and the vertices below, which gives the same bits.
+struct Snapshot {
+  struct Block {
+    std::vector<Point2> vertices;      // current, m
+    double rotation = 0.0;             // rad since the start
+    std::array<double, 6> velocity{};  // d'
+    std::array<double, 3> stress{};    // Pa
+    Point2 reference_centroid;         // of the gravitational energy, m
+    // The generalized forces at the current instant: total, its contact part, the dashpots'
+    // part of that, and the acceleration M^-1 force the next step starts from.
+    std::array<double, 6> force{}, contact_force{}, dashpot_force{}, acceleration{};
+  };
+  // The friction record of a pair of convex parts in contact.
+  struct Spring {
+    std::size_t cp = 0, tp = 0, cp_part = 0, tp_part = 0;
+    contact::FrictionState state;
+  };
+  // The relaxation of a static analysis (empty in a dynamic run).
+  struct Relaxation {
+    std::vector<char> moving;                      // per block
+    std::vector<double> mass_scale;                // per block
+    std::vector<std::array<double, 6>> velocity;  // per block
+    double reference = 0.0;                        // N/m
+  };
+  double time = 0.0;  // s
+  std::size_t steps = 0;
+  std::vector<Block> blocks;           // one per block, in the simulation's order
+  std::vector<ContactState> contacts;  // as contacts() returns them
+  std::vector<Spring> springs;         // in pair order
+  Relaxation relaxation;
+  // The energy bookkeeping (J/m) and the monitor's baseline.
+  double contact_work = 0.0, friction_dissipated = 0.0, mass_damping_dissipated = 0.0,
+         dashpot_dissipated = 0.0;
+  double initial_total = 0.0, initial_budget = 0.0, max_gravitational = 0.0;
+  double max_penetration = 0.0;  // m
+  Equilibrium equilibrium;
+  kernel::PredicateCounters predicates;
+};
+
 // The run cannot go on meaningfully; what() says why and with which numbers.
 class StabilityError : public std::runtime_error {
  public:
@@ -283,6 +325,16 @@ class Dda2d {
   // from the largest block and contact stiffness (StabilityError naming dt, the estimate and
   // the block or pair that set it). Evaluates the forces at t = 0 (contacts() is valid).
   Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params);
+
+  // Resumes the simulation `from` was taken of, which was built from the same blocks, law and
+  // params: no pre-solve, no first force evaluation, the state and bookkeeping as they were.
+  // Throws what the other constructor throws, and std::invalid_argument when `from` does not
+  // fit the blocks (their count or a block's vertex count differs, a contact or spring names a
+  // block or part that does not exist, a frictional contact has no spring).
+  Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params, const Snapshot& from);
+
+  // The state at the current instant, to resume from later (checkpoint.hpp writes it to a file).
+  Snapshot snapshot() const;
 
   // One step; throws StabilityError on NaN, on energy growth beyond what the integrator can
   // explain, or on penetration deeper than the blocks themselves (see the monitor above).

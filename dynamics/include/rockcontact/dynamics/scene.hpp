@@ -82,6 +82,7 @@
 // file and the path "blocks[i].vertices[k]", the kernel's message naming the block id.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -112,7 +113,13 @@ struct Scene {
   std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
   std::size_t every = 100;         // record tracks and frames every `every` steps
   double static_tolerance = 1.0e-6;  // static analysis: stop below this out-of-balance ratio
+  std::uint64_t digest = 0;          // scene_digest of the document it was parsed from
 };
+
+// A 64-bit digest (FNV-1a) of what a scene's run depends on: the document without
+// "description", "output" and "time.duration", so that a checkpoint still fits a scene whose
+// run was lengthened or is recorded differently. Member order and spacing do not matter.
+std::uint64_t scene_digest(const nlohmann::json& document);
 
 // The number of steps that covers the duration: duration / dt rounded up, except that a ratio
 // within 1e-9 (relative) of an integer counts as that integer (1.0 / 1e-4 is 10000 steps, not

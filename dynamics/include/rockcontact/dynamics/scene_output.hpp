@@ -91,11 +91,14 @@ struct RunReport {
   // whether it fell below the scene's static_tolerance.
   std::vector<std::pair<std::size_t, double>> balance;
   bool converged = false;
+  // A run resumed from a checkpoint: the file and the step it resumed at.
+  std::filesystem::path restarted_from;
+  std::size_t restart_steps = 0;
 };
 
 // The summary.json document of a run (keys in this order): scene, description, status,
 // [error], steps, time, dt, critical_time_step (null when unlimited),
-// critical_time_step_source, H, H_rule, wall_seconds, simulation_seconds,
+// critical_time_step_source, H, H_rule, [restart {file, steps, time} for a resumed run], wall_seconds, simulation_seconds,
 // output_seconds, energy {start, end} each {kinetic, gravitational, strain, contact,
 // friction_dissipated, damping_dissipated, total}, predicates {calls, fallbacks},
 // max_penetration, initial_equilibrium {blocks, iterations, ratio} (null when no block started
@@ -112,12 +115,22 @@ struct RunOptions {
   std::function<void(const Dda2d&)> observer;
   // Called after every step with (steps done, steps in the run).
   std::function<void(std::size_t, std::size_t)> progress;
+  // Every this many steps (counted from the run's start), out_dir/checkpoint.json is replaced
+  // by the state after the step (checkpoint.hpp); 0: never. Needs out_dir.
+  std::size_t checkpoint_every = 0;
+  // Resume from this checkpoint of the scene instead of starting: the run goes on from its
+  // step to the scene's step count, and its files cover that stretch (the tracks and energies
+  // from the checkpoint's instant on, the frames numbered from 0); summary.json's "start"
+  // energies are those of the original run's t = 0.
+  std::filesystem::path restart;
 };
 
-// Builds the engine from the scene, takes step_count(scene) steps and records. A run the
-// engine stops midway returns with status "stopped" and the engine's message in `error`.
-// Throws what the engine's constructor throws (StabilityError for a dt above its limit,
-// std::invalid_argument for a parameter it refuses) and OutputError.
+// Builds the engine from the scene (or resumes options.restart), takes the steps up to
+// step_count(scene) and records. A run the engine stops midway returns with status "stopped"
+// and the engine's message in `error`. Throws what the engine's constructor throws
+// (StabilityError for a dt above its limit, std::invalid_argument for a parameter it refuses),
+// InputError for a checkpoint that cannot be resumed, std::invalid_argument for checkpoints
+// without an output directory, and OutputError.
 RunReport run_scene(const Scene& scene, const RunOptions& options = {});
 
 }  // namespace rockcontact::dynamics
