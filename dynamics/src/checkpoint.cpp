@@ -94,7 +94,8 @@ ordered_json engine(const Snapshot& s) {
   ordered_json relaxation = {{"moving", ordered_json::array()},
                              {"mass_scale", ordered_json::array()},
                              {"velocity", ordered_json::array()},
-                             {"reference", s.relaxation.reference}};
+                             {"reference", s.relaxation.reference},
+                             {"kinetic", s.relaxation.kinetic}};
   for (std::size_t i = 0; i < s.relaxation.moving.size(); ++i) {
     relaxation["moving"].push_back(s.relaxation.moving[i] != 0);
     relaxation["mass_scale"].push_back(s.relaxation.mass_scale[i]);
@@ -263,6 +264,7 @@ Snapshot read_engine(const Reader& r, const json& value, const std::string& at) 
     std::copy(v.begin(), v.end(), s.relaxation.velocity.emplace_back().begin());
   }
   s.relaxation.reference = r.real(relaxation, relaxation_path, "reference");
+  s.relaxation.kinetic = r.real(relaxation, relaxation_path, "kinetic");
   s.contact_work = r.real(value, at, "contact_work");
   s.friction_dissipated = r.real(value, at, "friction_dissipated");
   s.mass_damping_dissipated = r.real(value, at, "mass_damping_dissipated");

@@ -35,11 +35,11 @@ constexpr double penetration_fraction = 0.5;
 // Below this many candidate pairs (or blocks) a parallel pass runs on the calling thread only:
 // starting the workers would cost more than it saves.
 constexpr std::ptrdiff_t parallel_threshold = 64;
-// Initial equilibrium (dda2d.hpp): omega h of the relaxation steps (1.6 ran into limit cycles of
-// the local damping on a 205-block rock mass; 0.8 converged there in 15 000 iterations), Cundall's
-// local damping factor, and the iteration cap.
-constexpr double relaxation_omega_h = 0.8;
-constexpr double local_damping = 0.8;
+// Initial equilibrium (dda2d.hpp): omega h of the relaxation steps, and the iteration cap. On the
+// 205-block rock mass of examples/scenes/collapse_*.json, 0.8, 1.0 and 1.2 took 10 160, 5 065 and
+// 4 481 iterations, and 1.6 diverged (its stiffest modes exceed the Gershgorin estimate there):
+// 1.0 keeps a margin.
+constexpr double relaxation_omega_h = 1.0;
 constexpr std::size_t relaxation_iterations = 100000;
 // Pairs apart by at most this fraction of the smaller perimeter count as resting on each other.
 constexpr double resting_gap = 1.0e-6;
@@ -314,6 +314,7 @@ struct Dda2d::Impl {
     std::vector<double> mass_scale;  // M' / M per block
     std::vector<Vector6> velocity;  // fictitious, per unit step
     double reference = 0.0;         // F_ref of the out-of-balance ratio, N/m
+    double kinetic = 0.0;           // fictitious kinetic energy after the last iteration
   } relaxation;
   kernel::PredicateCounters counters;
 };
@@ -890,23 +891,33 @@ void Dda2d::Impl::prepare_relaxation(std::vector<char> moving,
   }
 }
 
-// One relaxation iteration: Cundall's local damping on each generalized force component, a kick
-// of the scaled masses, the move, and the forces at the new configuration.
+// One relaxation iteration under kinetic damping: a kick of the scaled masses by the
+// out-of-balance forces; when the assembly's fictitious kinetic energy falls, it has just passed
+// a minimum of the potential energy along its path, so every velocity is zeroed there and the
+// motion starts again from rest (no move in that iteration). Otherwise the move and the forces
+// at the new configuration.
 void Dda2d::Impl::relax_once() {
   for (Body& b : bodies) b.increment = {};
   for_each_movable([&](std::size_t i) {
     if (!relaxation.moving[i]) return;
-    Body& b = bodies[i];
     Vector6& velocity = relaxation.velocity[i];
     for (std::size_t k = 0; k < 6; ++k) {
-      if (velocity[k] != 0.0) b.force[k] -= std::copysign(local_damping * std::fabs(b.force[k]), velocity[k]);
-    }
-    solve_acceleration(i);
-    for (std::size_t k = 0; k < 6; ++k) {
-      velocity[k] += b.acceleration[k] / relaxation.mass_scale[i];
-      b.increment[k] = velocity[k];
+      velocity[k] += bodies[i].acceleration[k] / relaxation.mass_scale[i];
     }
   });
+  double energy = 0.0;  // summed in block order: the same for any thread count
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (relaxation.moving[i]) energy += relaxation.mass_scale[i] * kinetic(i, relaxation.velocity[i]);
+  }
+  if (energy < relaxation.kinetic) {
+    std::fill(relaxation.velocity.begin(), relaxation.velocity.end(), Vector6{});
+    relaxation.kinetic = 0.0;
+    return;
+  }
+  relaxation.kinetic = energy;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (relaxation.moving[i]) bodies[i].increment = relaxation.velocity[i];
+  }
   advance_friction_records();
   for_each_movable([&](std::size_t i) {
     if (relaxation.moving[i]) move(i);
@@ -1222,7 +1233,7 @@ Snapshot Dda2d::Impl::snapshot() const {
   }
   if (params.analysis == Analysis::static_equilibrium) {
     out.relaxation = {relaxation.moving, relaxation.mass_scale, relaxation.velocity,
-                      relaxation.reference};
+                      relaxation.reference, relaxation.kinetic};
   }
   out.contact_work = contact_work;
   out.friction_dissipated = friction_dissipated;
@@ -1309,7 +1320,7 @@ void Dda2d::Impl::restore(const Snapshot& from) {
     if (r.moving.size() != n || r.mass_scale.size() != n || r.velocity.size() != n) {
       snapshot_misfit("a static analysis needs the relaxation state of every block");
     }
-    relaxation = {r.moving, r.mass_scale, r.velocity, r.reference};
+    relaxation = {r.moving, r.mass_scale, r.velocity, r.reference, r.kinetic};
   }
   time = from.time;
   steps = from.steps;
