@@ -22,10 +22,10 @@
 // 1.33e6 J/m released (3.4e-7).
 // The contact dashpots barely damp such rocking: a pair has one contact point pg, near the pivot
 // of a block rocking on a face or a blunt vertex, and the dashpot acts on pg's velocity. A lone
-// block left rocking on the floor by the drop of seed 4 (its instantaneous centre of rotation on
-// the floor's surface, 5 cm from below its centroid) loses 15 % of its kinetic energy per second
-// with zeta = 0.1 and none with zeta = 0, and keeps that pile above 1e-6 for more than 10 s;
-// seeds 1-3 came to rest in 3.2-3.8 s.
+// block left rocking on the floor by the drop of seed 4 (its instantaneous centre of rotation
+// on the floor's surface, 5 cm to the side of its centroid) loses 15 % of its kinetic energy
+// per second with zeta = 0.1 and none with zeta = 0, and keeps that pile above 1e-6 for more
+// than 10 s; seeds 1-3 came to rest in 3.2-3.8 s.
 // Every movable centroid is inside the box and no vertex lies beyond the inner face of the
 // floor or a wall by more than the penetration bound below; every contact at rest penetrates
 // less than 1 % of the smallest block's width (0.363 m). What is left at rest is the static load
