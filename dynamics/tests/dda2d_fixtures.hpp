@@ -1,7 +1,9 @@
 #pragma once
 // Small builders shared by the DDA tests: blocks, the frictionless contact of Table 4 row 4.1
-// (kn 1e7 Pa, H 1 m) and step parameters. Header-only, test code only.
+// (kn 1e7 Pa, H 1 m), step parameters and the energy balance. Header-only, test code only.
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,5 +40,30 @@ inline DdaParams params(double dt, Vector2 gravity = {0.0, 0.0}) {
   p.gravity = gravity;
   return p;
 }
+
+// The energy balance of dda2d.hpp: Energies::total() keeps its start value. Records, over the
+// instants it is given, the largest departure of total() from the start and the largest
+// magnitude any single term reached, both J/m.
+class EnergyBalance {
+ public:
+  explicit EnergyBalance(const Energies& start) : start_(start.total()) { record(start); }
+
+  void record(const Energies& e) {
+    drift_ = std::max(drift_, std::fabs(e.total() - start_));
+    for (const double term : {e.kinetic, e.gravitational, e.strain, e.contact, e.friction_dissipated,
+                              e.damping_dissipated}) {
+      largest_ = std::max(largest_, std::fabs(term));
+    }
+  }
+
+  double drift() const { return drift_; }
+  double largest_term() const { return largest_; }
+  double ratio() const { return drift_ / largest_; }  // the imbalance relative to the largest term
+
+ private:
+  double start_;
+  double drift_ = 0.0;
+  double largest_ = 0.0;
+};
 
 }  // namespace rockcontact::dynamics::testing
