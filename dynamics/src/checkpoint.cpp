@@ -80,6 +80,7 @@ ordered_json engine(const Snapshot& s) {
                         {"normal_force", pair(c.normal_force.x, c.normal_force.y)},
                         {"friction_force", pair(c.friction_force.x, c.friction_force.y)},
                         {"damping_force", pair(c.damping_force.x, c.damping_force.y)},
+                        {"damping_moment", c.damping_moment},
                         {"sliding", c.sliding},
                         {"penetration", c.penetration}});
   }
@@ -232,6 +233,7 @@ Snapshot read_engine(const Reader& r, const json& value, const std::string& at) 
     out.normal_force = r.vector(c, path, "normal_force");
     out.friction_force = r.vector(c, path, "friction_force");
     out.damping_force = r.vector(c, path, "damping_force");
+    out.damping_moment = r.real(c, path, "damping_moment");
     out.sliding = r.flag(c, path, "sliding");
     out.penetration = r.real(c, path, "penetration");
   }

@@ -260,7 +260,7 @@ struct Dda2d::Impl {
   void advance_friction_records();
   Vector2 point_increment(std::size_t i, Point2 p) const;
   Vector2 point_velocity(std::size_t i, Point2 p) const;
-  Vector2 dashpot(const ContactState& c, const PartContact& m) const;
+  void dashpot(ContactState& c, const PartContact& m) const;
   void move(std::size_t i);
   void check_state();
   void record_work();
@@ -692,7 +692,7 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
     c.sliding = r.sliding;
     friction_dissipated += r.dissipated;
   }
-  if (law.damping_ratio > 0.0 && !settling) c.damping_force = dashpot(c, m);
+  if (law.damping_ratio > 0.0 && !settling) dashpot(c, m);
   apply_contact(c);
   contacts.push_back(c);
   contact_records.push_back(record);
@@ -713,10 +713,10 @@ void Dda2d::Impl::check_penetration(const PartContact& m) {
   }
 }
 
-// The dashpot force on CP (dda2d.hpp, "Contact damping") at the current instant.
-Vector2 Dda2d::Impl::dashpot(const ContactState& c, const PartContact& m) const {
+// The dashpot force and moment on CP (dda2d.hpp, "Contact damping") at the current instant.
+void Dda2d::Impl::dashpot(ContactState& c, const PartContact& m) const {
   const double fn = std::hypot(c.normal_force.x, c.normal_force.y);
-  if (!(fn > 0.0)) return {};
+  if (!(fn > 0.0)) return;
   const Vector2 n{c.normal_force.x / fn, c.normal_force.y / fn};
   const Vector2 a = point_velocity(c.cp, c.point), b = point_velocity(c.tp, c.point);
   const Vector2 v{a.x - b.x, a.y - b.y};
@@ -733,7 +733,10 @@ Vector2 Dda2d::Impl::dashpot(const ContactState& c, const PartContact& m) const 
     f.x -= ct * (v.x - along * n.x);
     f.y -= ct * (v.y - along * n.y);
   }
-  return f;
+  c.damping_force = f;
+  const double spin = (states[c.cp].fixed ? 0.0 : states[c.cp].velocity[2]) -
+                      (states[c.tp].fixed ? 0.0 : states[c.tp].velocity[2]);
+  c.damping_moment = -cn * m.length * m.length / 12.0 * spin;
 }
 
 void Dda2d::Impl::apply_contact(const ContactState& c) {
@@ -745,8 +748,10 @@ void Dda2d::Impl::apply_contact(const ContactState& c) {
     const Vector2 r{c.point.x - o.x, c.point.y - o.y};
     const Vector6 g = detail::transform_transpose(r, f);
     for (std::size_t k = 0; k < 6; ++k) bodies[i].contact_force[k] += sign * g[k];
-    if (c.damping_force.x == 0.0 && c.damping_force.y == 0.0) return;
-    const Vector6 d = detail::transform_transpose(r, c.damping_force);
+    if (c.damping_force.x == 0.0 && c.damping_force.y == 0.0 && c.damping_moment == 0.0) return;
+    Vector6 d = detail::transform_transpose(r, c.damping_force);
+    d[2] += c.damping_moment;
+    bodies[i].contact_force[2] += sign * c.damping_moment;
     for (std::size_t k = 0; k < 6; ++k) bodies[i].dashpot_force[k] += sign * d[k];
   };
   add(c.cp, 1.0);

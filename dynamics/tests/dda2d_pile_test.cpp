@@ -10,50 +10,48 @@
 // semi-axes a in [0.26, 0.34] m, b in [0.8, 1] a, turned at random; each row 3 cm above the
 // highest block of the row below, the lowest 3 cm above the floor (std::mt19937, seed 20240516).
 // Rock: rho 2600 kg/m³, E 10 GPa. Parameters as README "Choosing the parameters" tells a user:
-// kn = 1e9 Pa (E / 10), kt = 1e9 N/m, H = 0.5 m (the blocks' size), phi = 30° under the default
+// kn = 2e9 Pa (E / 5), kt = 1e9 N/m, H = 0.5 m (the blocks' size), phi = 30° under the default
 // elastoplastic friction law, damping ratio zeta = 0.1, dt half the engine's critical estimate
-// (9.1e-5 s), no mass damping.
+// (6.9e-5 s), no mass damping. (kn = E / 10 left 0.84-0.92 % at rest, too close to the bound
+// below for a run whose details move with every rounding.)
 //
 // ## Rest
 // At rest the kinetic energy is below 1e-6 of the potential energy released, and has stayed
 // there for the last 0.25 s: the pile's slowest motion is a block rocking on a single contact
 // with a half period of 0.1-0.18 s, so a shorter window could catch a dip between two swings.
-// Measured: at rest 2.50 s after the release (27 386 steps), 0.46 J/m of kinetic energy against
-// 1.33e6 J/m released (3.4e-7).
-// The contact dashpots barely damp such rocking: a pair has one contact point pg, near the pivot
-// of a block rocking on a face or a blunt vertex, and the dashpot acts on pg's velocity. A lone
-// block left rocking on the floor by the drop of seed 4 (its instantaneous centre of rotation
-// on the floor's surface, 5 cm to the side of its centroid) loses 15 % of its kinetic energy
-// per second with zeta = 0.1 and none with zeta = 0, and keeps that pile above 1e-6 for more
-// than 10 s; seeds 1-3 came to rest in 3.2-3.8 s.
+// Such rocking is damped by the contact's rocking dashpot (dda2d.hpp, "Contact damping"): before
+// it, a block left rocking alone on the floor by the drop of seed 4 kept that pile above 1e-6
+// for more than 10 s. Measured: at rest 4.68 s after the release (67 508 steps), 0.15 J/m of
+// kinetic energy against 1.34e6 J/m released (1.2e-7); seeds 1-4: 2.3-4.7 s.
 // Every movable centroid is inside the box and no vertex lies beyond the inner face of the
 // floor or a wall by more than the penetration bound below; every contact at rest penetrates
 // less than 1 % of the smallest block's width (0.363 m). What is left at rest is the static load
-// of a few blocks on a vertex, which grows as the square root of the load: measured 3.15 mm
-// (0.87 %) here, 0.76-1.03 % for seeds 1-3. The largest penetration during the drop is reported,
+// of a few blocks on a vertex, which grows as the square root of the load: measured 2.1 mm
+// (0.58 %) here, 0.49-0.58 % for seeds 1-4. The largest penetration during the drop is reported,
 // not asserted against 1 %: a vertex struck at v into a face sinks as far as
 // delta³ ~ 3 m v² H / (2 kn), about 1 cm for 3 m/s at these kn and H (measured 1.3 cm, 3.6 %
-// of the smallest width, between blocks of rows 3-5 half a second into the drop); 1 % would take
-// kn 40 times stiffer and a time step 6 times shorter.
+// of the smallest width; 0.94-1.3 cm for seeds 1-4); 1 % would take kn 20 times stiffer and a
+// time step 4.5 times shorter.
 //
 // ## Energy balance
 // Energies::total() keeps its start value to within 1 % of the largest term (the released
 // potential energy), checked after every step: the contact term is the trapezoid-rule work of
 // the contact forces, so with velocity Verlet the balance closes up to the integrator's
-// O((omega h)²) term and the exact rotation of the vertices (measured 2.8e-5; 1.8e-5 to 3.1e-5
+// O((omega h)²) term and the exact rotation of the vertices (measured 2.7e-5; 1.8e-5 to 2.9e-5
 // for seeds 1-4).
 //
 // ## Static analysis
 // From the blocks where they came to rest (their vertices, zero velocity, unloaded tangential
 // springs), "analysis": "static" relaxes until the out-of-balance ratio is below 1e-6; each
 // block's centroid height must change by less than 1 % of its height above the floor. That
-// allows 1.8 mm to the lowest centroid (0.18 m up), less than a block slipping or rolling off
-// its support would move; 1 % of the pile's height (2.8 m) would allow 28 mm everywhere, enough for a bottom block to slide out
-// from under its load unnoticed. The relaxation only reloads the tangential springs (f / kt, a
-// few 1e-5 m) and adjusts the normal overlaps. Measured: 7 618 iterations, the largest change
-// 6.1e-5 m (1.2e-4 of that block's height).
+// allows 1.9 mm to the lowest centroid (0.19 m up), less than a block slipping or rolling off
+// its support would move; 1 % of the pile's height (2.8 m) would allow 28 mm everywhere, enough
+// for a bottom block to slide out from under its load unnoticed. The relaxation only reloads the
+// tangential springs (f / kt, a few 1e-5 m) and adjusts the normal overlaps. Measured: 4 733
+// iterations, the largest change 1.1e-4 m (9.8e-5 of that block's height); seeds 1-4: 2 924-4 290
+// iterations, at most 1.3e-4 of a block's height.
 //
-// Wall time (Release, one thread, on the shared 2-core machine): drop 18 s, static analysis 7 s.
+// Wall time (Release, one thread, on the shared 2-core machine): drop 53 s, static analysis 4 s.
 
 #include <algorithm>
 #include <chrono>
@@ -166,7 +164,7 @@ Scene dropped_blocks() {
 
 ContactLaw rock_contact() {
   ContactLaw law;
-  law.normal.kn = 1.0e9;
+  law.normal.kn = 2.0e9;
   law.normal.H = 0.5;
   law.friction = FrictionLaw{1.0e9, 30.0};
   law.damping_ratio = 0.1;

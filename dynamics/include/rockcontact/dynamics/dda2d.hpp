@@ -34,7 +34,15 @@
 // movable block's mass against a fixed one), k_n = 2 kn L / H the normal stiffness of a
 // face-on-face overlap of length L (L = half the IP's perimeter, see the critical step below)
 // and k_t = kt. The tangential dashpot acts only while the friction sticks (a sliding contact's
-// shear force is the Coulomb limit alone). The force at t_n+1 uses the velocities d'_{n+1/2} of
+// shear force is the Coulomb limit alone). The normal springs are spread along the contact, and
+// so is the normal dashpot: a relative rotation w = r0'_CP - r0'_TP of the two blocks opens one
+// end of a contact of length L and closes the other, and c_n / L per unit length at a velocity
+// w s over -L/2 <= s <= L/2 resists with the moment
+//   m_d = -c_n L² / 12 w   (on CP; on TP the opposite).
+// Without it a block rocking on a face would be undamped: its contact point is near the pivot,
+// where the relative velocity vanishes (a lone block rocking on the floor lost 15 % of its
+// kinetic energy a second with zeta = 0.1, and a 221-block pile stayed above 1e-6 of its
+// released energy for 10 s). The force at t_n+1 uses the velocities d'_{n+1/2} of
 // the step (the full-step velocities are not known before the force), the usual explicit DEM
 // dashpot; its work is reported as damping dissipation. A dashpot lowers the stability limit of
 // a spring-mass pair to 2 / omega (sqrt(1 + zeta²) - zeta), applied to the whole estimate.
@@ -247,6 +255,7 @@ struct ContactState {
   Vector2 normal_force;      // on CP, N/m; on TP the opposite
   Vector2 friction_force;    // on CP, N/m; on TP the opposite; zero when frictionless
   Vector2 damping_force;     // the dashpot's, on CP, N/m; on TP the opposite; zero without one
+  double damping_moment = 0.0;  // the rocking dashpot's, on CP, N m/m; on TP the opposite
   bool sliding = false;      // the friction force is at the Coulomb limit
   double penetration = 0.0;  // minimum translation distance that separates the pair, m
 };
