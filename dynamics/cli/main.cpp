@@ -142,6 +142,7 @@ void add_pairs(CLI::App& app, int& exit_status) {
 struct RunArgs {
   std::string scene;
   std::string out;
+  std::size_t threads = 0;  // DdaParams::threads: 0 is one per core
 };
 
 bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
@@ -182,7 +183,8 @@ class ProgressBar {
 };
 
 int run_run(const RunArgs& options) {
-  const dyn::Scene scene = dyn::read_scene_file(options.scene);
+  dyn::Scene scene = dyn::read_scene_file(options.scene);
+  scene.params.threads = options.threads;
   ProgressBar bar;
   dyn::RunOptions run_options;
   run_options.out_dir = options.out;
@@ -233,6 +235,11 @@ void add_run(CLI::App& app, int& exit_status) {
   sub->add_option("scene", options->scene, "Scene JSON (see dynamics/include/.../scene.hpp)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();
+  sub->add_option("--threads", options->threads,
+                  "Threads of the engine's parallel passes (0: one per core); the results do not "
+                  "depend on it")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1024}))
+      ->capture_default_str();
   sub->callback([options, &exit_status] { exit_status = run_run(*options); });
 }
 
