@@ -1,6 +1,7 @@
 #include "rockcontact/dynamics/dda2d.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -177,6 +178,29 @@ struct PairScratch {
   contact::PairResult result;
 };
 
+detail::BroadPhaseBox bounding_box(std::span<const Point2> vertices) {
+  detail::BroadPhaseBox box;
+  box.xmin = box.ymin = std::numeric_limits<double>::infinity();
+  box.xmax = box.ymax = -std::numeric_limits<double>::infinity();
+  for (const Point2& p : vertices) {
+    box.xmin = std::min(box.xmin, p.x);
+    box.xmax = std::max(box.xmax, p.x);
+    box.ymin = std::min(box.ymin, p.y);
+    box.ymax = std::max(box.ymax, p.y);
+  }
+  return box;
+}
+
+// Whether the interiors of two boxes intersect. A box is the exact extremes of its polygon's
+// vertex coordinates (min and max do not round), so when the interiors of the boxes are disjoint
+// those of the polygons are too: the kernel could only answer touch or separate, and the pair
+// has no force. The grid's closed boxes pair up touching blocks, and the blocks of a jointed
+// mass start in exact touch: at 10⁴ blocks (bench/dda_scale, step 40) this leaves 1 398 of the
+// grid's 38 869 pairs to the kernel, 1 396 of them in contact.
+bool interiors_overlap(const detail::BroadPhaseBox& a, const detail::BroadPhaseBox& b) {
+  return a.xmin < b.xmax && b.xmin < a.xmax && a.ymin < b.ymax && b.ymin < a.ymax;
+}
+
 void add_counters(kernel::PredicateCounters& total, const kernel::PredicateCounters& spent) {
   for (std::size_t k = 0; k < kernel::predicate_kind_count; ++k) {
     total.calls[k] += spent.calls[k];
@@ -235,13 +259,14 @@ struct Dda2d::Impl {
   void evaluate_forces();
   template <kernel::NumberPolicy Policy>
   void evaluate_contacts();
-  void candidate_pairs();
+  const std::vector<BlockPair>& candidate_pairs();
   void resolve_groups(const std::vector<BlockSpec>& specs);
   template <kernel::NumberPolicy Policy>
   void measure_candidates();
   template <kernel::NumberPolicy Policy>
   void measure(PartContact& c, PairScratch& mine) const;
   void record_contact(const PartContact& m);
+  std::size_t carry_friction(const PartPair& parts);
   void count_worker(const kernel::PredicateCounters& before);
   void check_penetration(const PartContact& m);
   std::size_t law_index(std::size_t i, std::size_t j) const {
@@ -272,21 +297,27 @@ struct Dda2d::Impl {
   std::vector<Body> bodies;
   std::vector<BlockState> states;
   std::vector<ContactState> contacts;
-  // Friction records by pair, each stamped with the last evaluation that found the pair in
-  // contact; contact_records[k] is that of contacts[k] (map nodes do not move).
+  // The friction records of the pairs of parts in contact at the last evaluation, in pair order
+  // (the order the contacts are found in); friction_of[k] indexes that of contacts[k] (no_record
+  // on a frictionless interface). An evaluation builds the next list in one walk along the
+  // previous one (carry_friction): a pair still in contact keeps its record, a new one starts
+  // in stick with d = 0, a pair no longer in contact loses its record. A flat list replaced a
+  // map stamped and swept at every evaluation.
   struct FrictionRecord {
+    PartPair parts;
     contact::FrictionState state;
-    std::size_t evaluation = 0;
   };
-  std::map<PartPair, FrictionRecord> friction;
-  std::vector<contact::FrictionState*> contact_records;
-  std::size_t evaluations = 0;
+  static constexpr std::size_t no_record = static_cast<std::size_t>(-1);
+  std::vector<FrictionRecord> friction;
+  std::vector<FrictionRecord> previous_friction;  // the last evaluation's, while one runs
+  std::size_t carried = 0;                        // walk position in previous_friction
+  std::vector<std::size_t> friction_of;
   std::vector<PartContact> candidates;
   std::vector<PairScratch> thread_scratch;  // one per thread
   int thread_count = 1;
-  detail::UniformGrid grid;
-  std::vector<BlockPair> pairs;
-  std::vector<detail::BroadPhaseBox> boxes;
+  detail::VerletList broad_phase;
+  std::vector<BlockPair> pairs;  // every pair, when there are few blocks
+  std::vector<detail::BroadPhaseBox> boxes;  // per block, current
   std::vector<Point2> scratch;
 
   double time = 0.0;
@@ -408,6 +439,7 @@ void Dda2d::Impl::add_block(const BlockSpec& spec) {
     b.inradius = std::min(b.inradius, detail::inradius(part.vertices()));
   }
   b.perimeter = detail::perimeter(s.vertices);
+  boxes.emplace_back();
   if (!spec.fixed) {
     b.compliance = detail::max_vertex_compliance(s.vertices, m, s.mass, spec.rigid);
     if (!spec.rigid) b.elastic_omega2 = detail::elastic_omega_squared(m, s.mass, b.elasticity);
@@ -502,6 +534,11 @@ void Dda2d::Impl::refresh(std::size_t i) {
     b.rs_mass = detail::rotation_strain_mass(m, s.mass);
     b.rs_factor.compute(b.rs_mass);
   }
+  boxes[i] = bounding_box(s.vertices);
+  boxes[i].fixed = s.fixed;
+  for (std::size_t p = 0; p < b.parts.boxes.size(); ++p) {
+    b.parts.boxes[p] = bounding_box(b.parts.polygons[p].vertices());
+  }
 }
 
 std::string Dda2d::Impl::at_step() const {
@@ -531,56 +568,21 @@ void Dda2d::Impl::evaluate_forces() {
   });
 }
 
-namespace {
 
-detail::BroadPhaseBox bounding_box(std::span<const Point2> vertices) {
-  detail::BroadPhaseBox box;
-  box.xmin = box.ymin = std::numeric_limits<double>::infinity();
-  box.xmax = box.ymax = -std::numeric_limits<double>::infinity();
-  for (const Point2& p : vertices) {
-    box.xmin = std::min(box.xmin, p.x);
-    box.xmax = std::max(box.xmax, p.x);
-    box.ymin = std::min(box.ymin, p.y);
-    box.ymax = std::max(box.ymax, p.y);
+// The pairs of blocks whose boxes may overlap, in (i, j) order.
+const std::vector<BlockPair>& Dda2d::Impl::candidate_pairs() {
+  if (bodies.size() <= broad_phase_threshold) {
+    if (pairs.empty()) detail::all_pairs(boxes, pairs);  // every pair, fixed once
+    return pairs;
   }
-  return box;
-}
-
-// Whether the interiors of two boxes intersect. A box is the exact extremes of its polygon's
-// vertex coordinates (min and max do not round), so when the interiors of the boxes are disjoint
-// those of the polygons are too: the kernel could only answer touch or separate, and the pair
-// has no force. The grid's closed boxes pair up touching blocks, and the blocks of a jointed
-// mass start in exact touch: at 10⁴ blocks (bench/dda_scale, step 40) this leaves 1 398 of the
-// grid's 38 869 pairs to the kernel, 1 396 of them in contact.
-bool interiors_overlap(const detail::BroadPhaseBox& a, const detail::BroadPhaseBox& b) {
-  return a.xmin < b.xmax && b.xmin < a.xmax && a.ymin < b.ymax && b.ymin < a.ymax;
-}
-
-}  // namespace
-
-void Dda2d::Impl::candidate_pairs() {
-  const bool small = bodies.size() <= broad_phase_threshold;
-  boxes.resize(bodies.size());
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    Parts& parts = bodies[i].parts;
-    boxes[i] = bounding_box(states[i].vertices);
-    boxes[i].fixed = states[i].fixed;
-    for (std::size_t p = 0; p < parts.boxes.size(); ++p) {
-      parts.boxes[p] = bounding_box(parts.polygons[p].vertices());
-    }
-  }
-  if (!small) {
-    grid.find_pairs(boxes, pairs);
-  } else if (pairs.empty()) {
-    detail::all_pairs(boxes, pairs);  // every pair, fixed once
-  }
+  broad_phase.update(boxes);
+  return broad_phase.pairs();
 }
 
 template <kernel::NumberPolicy Policy>
 void Dda2d::Impl::evaluate_contacts() {
-  candidate_pairs();
   candidates.clear();
-  for (const auto& [i, j] : pairs) {
+  for (const auto& [i, j] : candidate_pairs()) {
     const Parts& a = bodies[i].parts;
     const Parts& b = bodies[j].parts;
     for (std::size_t p = 0; p < a.polygons.size(); ++p) {
@@ -596,13 +598,26 @@ void Dda2d::Impl::evaluate_contacts() {
   }
   measure_candidates<Policy>();
   contacts.clear();
-  contact_records.clear();
-  ++evaluations;
+  friction_of.clear();
+  friction.swap(previous_friction);
+  friction.clear();
+  carried = 0;
   for (const PartContact& c : candidates) {
     if (c.touching) record_contact(c);
   }
-  // Pairs that separated lose their record.
-  std::erase_if(friction, [&](const auto& entry) { return entry.second.evaluation != evaluations; });
+}
+
+// The index in `friction` of the record of `parts` for this evaluation: the previous
+// evaluation's record when the pair was in contact then, else a fresh one (stick, d = 0). The
+// pairs come in increasing order, so one forward walk over the previous records finds them.
+std::size_t Dda2d::Impl::carry_friction(const PartPair& parts) {
+  assert(friction.empty() || friction.back().parts < parts);
+  while (carried < previous_friction.size() && previous_friction[carried].parts < parts) ++carried;
+  FrictionRecord& record = friction.emplace_back(FrictionRecord{parts, {}});
+  if (carried < previous_friction.size() && previous_friction[carried].parts == parts) {
+    record.state = previous_friction[carried].state;
+  }
+  return friction.size() - 1;
 }
 
 // The geometric work of every candidate (the IP, the normal force and the penetration depth),
@@ -672,16 +687,15 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
   c.point = m.point;
   c.normal_force = m.force;
   c.penetration = m.depth;
-  contact::FrictionState* record = nullptr;
+  std::size_t record = no_record;
   const std::optional<FrictionLaw>& friction_law = laws[law_index(i, j)].friction;
   if (friction_law) {
-    FrictionRecord& stamped = friction[m.parts];  // a new contact starts in stick, d = 0
-    stamped.evaluation = evaluations;
-    record = &stamped.state;
+    record = carry_friction(m.parts);
+    contact::FrictionState& state = friction[record].state;
     const contact::FrictionResult r = contact::evaluate_friction(
-        *record, c.normal_force, *friction_law, m.length,
+        state, c.normal_force, *friction_law, m.length,
         settling ? contact::Slip::locked : contact::Slip::allowed);
-    contact::commit_friction(*record, r);
+    contact::commit_friction(state, r);
     c.friction_force = r.force;
     c.sliding = r.sliding;
     friction_dissipated += r.dissipated;
@@ -689,7 +703,7 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
   if (law.damping_ratio > 0.0 && !settling) c.damping_force = dashpot(c, m);
   apply_contact(c);
   contacts.push_back(c);
-  contact_records.push_back(record);
+  friction_of.push_back(record);
 }
 
 void Dda2d::Impl::check_penetration(const PartContact& m) {
@@ -1048,11 +1062,11 @@ Vector2 Dda2d::Impl::point_velocity(std::size_t i, Point2 p) const {
 
 void Dda2d::Impl::advance_friction_records() {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    if (contact_records[k] == nullptr) continue;  // a frictionless interface
+    if (friction_of[k] == no_record) continue;  // a frictionless interface
     const ContactState& c = contacts[k];
     const Vector2 a = point_increment(c.cp, c.point), b = point_increment(c.tp, c.point);
     const Vector2 relative{a.x - b.x, a.y - b.y};
-    contact::FrictionState& record = *contact_records[k];
+    contact::FrictionState& record = friction[friction_of[k]].state;
     const FrictionLaw& friction_law = *laws[law_index(c.cp, c.tp)].friction;
     if (friction_law.model == contact::FrictionModel::paper && record.sliding) {
       const double fn = std::hypot(c.normal_force.x, c.normal_force.y);
