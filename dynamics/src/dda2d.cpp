@@ -278,6 +278,22 @@ struct Dda2d::Impl {
   void first_half_kick(std::size_t i);
   void second_half_kick(std::size_t i);
   void advance_friction_records();
+  // The map of a movable block's material points over the step: the point at p (current
+  // position) moves by Δt + R (I + Δε) r - r, r = p - centroid, R the rotation by Δr0 whose
+  // cosine and sine are taken once per block (once per vertex they were 5 % of a step's
+  // instructions at 10⁴ blocks).
+  struct StepMap {
+    Vector6 d;
+    Point2 centroid;
+    double cos = 1.0, sin = 0.0;
+    Vector2 operator()(Point2 p) const {
+      const double rx = p.x - centroid.x, ry = p.y - centroid.y;
+      const double sx = rx + d[3] * rx + 0.5 * d[5] * ry;
+      const double sy = ry + 0.5 * d[5] * rx + d[4] * ry;
+      return {d[0] + (cos * sx - sin * sy) - rx, d[1] + (sin * sx + cos * sy) - ry};
+    }
+  };
+  StepMap step_map(std::size_t i) const;
   Vector2 point_increment(std::size_t i, Point2 p) const;
   Vector2 point_velocity(std::size_t i, Point2 p) const;
   Vector2 dashpot(const ContactState& c, const PartContact& m) const;
@@ -1040,17 +1056,16 @@ void Dda2d::Impl::second_half_kick(std::size_t i) {
   }
 }
 
+Dda2d::Impl::StepMap Dda2d::Impl::step_map(std::size_t i) const {
+  const Vector6& d = bodies[i].increment;
+  return {d, states[i].centroid, std::cos(d[2]), std::sin(d[2])};
+}
+
 // Displacement over the step of the material point at p (current position) of block i, under
-// the same map as move(): Δt + R (I + Δε) r - r, r = p - centroid.
+// the same map as move().
 Vector2 Dda2d::Impl::point_increment(std::size_t i, Point2 p) const {
   if (states[i].fixed) return {};
-  const Vector6& d = bodies[i].increment;
-  const Point2& o = states[i].centroid;
-  const double rx = p.x - o.x, ry = p.y - o.y;
-  const double sx = rx + d[3] * rx + 0.5 * d[5] * ry;
-  const double sy = ry + 0.5 * d[5] * rx + d[4] * ry;
-  const double c = std::cos(d[2]), s = std::sin(d[2]);
-  return {d[0] + (c * sx - s * sy) - rx, d[1] + (s * sx + c * sy) - ry};
+  return step_map(i)(p);
 }
 
 // Velocity of the material point at p (current position) of block i: T(p) d' (eq. 3).
@@ -1089,13 +1104,14 @@ void Dda2d::Impl::move(std::size_t i) {
     }
   }
   const Point2 o = s.centroid;
+  const StepMap map = step_map(i);
   for (Point2& p : s.vertices) {
-    const Vector2 u = point_increment(i, p);
+    const Vector2 u = map(p);
     p = {p.x + u.x, p.y + u.y};
   }
   s.rotation += d[2];
   if (!s.rigid) {
-    const double c = std::cos(d[2]), sn = std::sin(d[2]);
+    const double c = map.cos, sn = map.sin;
     const Eigen::Vector3d dsigma = b.elasticity * Eigen::Vector3d(d[3], d[4], d[5]);
     s.stress = rotate_tensor(s.stress[0] + dsigma(0), s.stress[1] + dsigma(1),
                              s.stress[2] + dsigma(2), c, sn);
