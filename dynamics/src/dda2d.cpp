@@ -231,7 +231,6 @@ struct Body {
   Vector6 dashpot_force{};      // the contact dashpots' part of contact_force
   Vector6 acceleration{};       // M^-1 force
   Vector6 increment{};          // Δd of the last step
-  double damped = 0.0;          // kinetic energy the mass damping took in this step, J/m
 };
 
 }  // namespace
@@ -348,11 +347,13 @@ struct Dda2d::Impl {
   std::vector<detail::BroadPhaseBox> boxes;  // per block, current
   // Per block, computed on the worker threads and summed in block order, so the sums are the
   // same numbers for any thread count: half the step's work against the contact forces and the
-  // dashpots (share_work), and the energies (check_block).
-  struct WorkShare {
-    double contact = 0.0, dashpot = 0.0;  // J/m
+  // dashpots (share_work), the kinetic energy the mass damping took in the step (the kicks),
+  // and the energies (check_block). Kept apart from the blocks, so that the serial sums read
+  // contiguous memory; a fixed block's shares stay zero.
+  struct StepShare {
+    double contact_work = 0.0, dashpot_work = 0.0, damped = 0.0;  // J/m
   };
-  std::vector<WorkShare> work_shares;
+  std::vector<StepShare> step_shares;
   std::vector<BlockEnergy> energy_shares;
   std::vector<Point2> scratch;
 
@@ -476,7 +477,7 @@ void Dda2d::Impl::add_block(const BlockSpec& spec) {
   }
   b.perimeter = detail::perimeter(s.vertices);
   boxes.emplace_back();
-  work_shares.emplace_back();
+  step_shares.emplace_back();
   energy_shares.emplace_back();
   if (!spec.fixed) {
     b.compliance = detail::max_vertex_compliance(s.vertices, m, s.mass, spec.rigid);
@@ -1077,7 +1078,7 @@ void Dda2d::Impl::first_half_kick(std::size_t i) {
     const double damp = half * params.mass_damping;
     std::array<double, 6> damped;
     for (std::size_t k = 0; k < 6; ++k) damped[k] = kicked[k] - damp * v[k];
-    bodies[i].damped += kinetic(i, kicked) - kinetic(i, damped);
+    step_shares[i].damped += kinetic(i, kicked) - kinetic(i, damped);
     kicked = damped;
   }
   v = kicked;
@@ -1092,7 +1093,7 @@ void Dda2d::Impl::second_half_kick(std::size_t i) {
   if (params.mass_damping > 0.0) {
     const double before = kinetic(i, v);
     for (double& x : v) x /= 1.0 + half * params.mass_damping;
-    bodies[i].damped += before - kinetic(i, v);
+    step_shares[i].damped += before - kinetic(i, v);
   }
 }
 
@@ -1225,14 +1226,14 @@ void Dda2d::Impl::check_energy() {
 // worker threads (share_work), the sums in block order (add_work).
 void Dda2d::Impl::share_work(std::size_t i) {
   const Body& b = bodies[i];
-  work_shares[i] = {0.5 * dot6(b.contact_force, b.increment), 0.5 * dot6(b.dashpot_force, b.increment)};
+  step_shares[i].contact_work = 0.5 * dot6(b.contact_force, b.increment);
+  step_shares[i].dashpot_work = 0.5 * dot6(b.dashpot_force, b.increment);
 }
 
 void Dda2d::Impl::add_work() {
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    if (states[i].fixed) continue;
-    contact_work -= work_shares[i].contact;
-    dashpot_dissipated -= work_shares[i].dashpot;
+  for (const StepShare& share : step_shares) {
+    contact_work -= share.contact_work;
+    dashpot_dissipated -= share.dashpot_work;
   }
 }
 
@@ -1248,7 +1249,7 @@ void Dda2d::Impl::advance() {
   ++steps;
   time = static_cast<double>(steps) * params.dt;
   for_each_movable([this](std::size_t i) {
-    bodies[i].damped = 0.0;
+    step_shares[i].damped = 0.0;
     first_half_kick(i);
     share_work(i);
   });
@@ -1262,9 +1263,7 @@ void Dda2d::Impl::advance() {
     check_block(i);
   });
   add_work();
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!states[i].fixed) damping_dissipated += bodies[i].damped;  // in block order
-  }
+  for (const StepShare& share : step_shares) damping_dissipated += share.damped;
   check_energy();
 }
 
