@@ -144,6 +144,7 @@ struct RunArgs {
   std::string out;
   std::size_t checkpoint_every = 0;
   std::string restart;
+  std::size_t threads = 0;  // DdaParams::threads: 0 is one per core
 };
 
 bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
@@ -184,7 +185,8 @@ class ProgressBar {
 };
 
 int run_run(const RunArgs& options) {
-  const dyn::Scene scene = dyn::read_scene_file(options.scene);
+  dyn::Scene scene = dyn::read_scene_file(options.scene);
+  scene.params.threads = options.threads;
   ProgressBar bar;
   dyn::RunOptions run_options;
   run_options.out_dir = options.out;
@@ -247,6 +249,11 @@ void add_run(CLI::App& app, int& exit_status) {
                   "Replace OUT/checkpoint.json with the full state every N steps (0: never)");
   sub->add_option("--restart", options->restart,
                   "Resume from a checkpoint.json of this scene (bit-identical continuation)");
+  sub->add_option("--threads", options->threads,
+                  "Threads of the engine's parallel passes (0: one per core); the results do not "
+                  "depend on it")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1024}))
+      ->capture_default_str();
   sub->callback([options, &exit_status] { exit_status = run_run(*options); });
 }
 

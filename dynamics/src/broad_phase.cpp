@@ -90,4 +90,32 @@ void all_pairs(std::span<const BroadPhaseBox> boxes, std::vector<BlockPair>& pai
   }
 }
 
+bool VerletList::stands(std::span<const BroadPhaseBox> boxes) const {
+  if (reach_.size() != boxes.size()) return false;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const BroadPhaseBox &b = boxes[i], &r = reach_[i];
+    if (b.xmin < r.xmin || b.xmax > r.xmax || b.ymin < r.ymin || b.ymax > r.ymax) return false;
+  }
+  return true;
+}
+
+bool VerletList::update(std::span<const BroadPhaseBox> boxes) {
+  if (stands(boxes)) return false;
+  double extent = 0.0;
+  for (const BroadPhaseBox& b : boxes) {
+    if (!b.fixed) extent = std::max({extent, b.xmax - b.xmin, b.ymax - b.ymin});
+  }
+  const double margin = verlet_margin_fraction * extent;
+  reach_.assign(boxes.begin(), boxes.end());
+  for (BroadPhaseBox& r : reach_) {
+    r.xmin -= margin;
+    r.ymin -= margin;
+    r.xmax += margin;
+    r.ymax += margin;
+  }
+  grid_.find_pairs(reach_, pairs_);
+  std::sort(pairs_.begin(), pairs_.end());
+  return true;
+}
+
 }  // namespace rockcontact::dynamics::detail

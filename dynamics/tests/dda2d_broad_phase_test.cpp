@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -72,6 +73,51 @@ BOOST_AUTO_TEST_CASE(uniform_grid_equals_brute_force) {
       }
     }
   }
+}
+
+// The Verlet list on the same kind of boxes, drifting by 1/64 m per frame (the margin is 1/20
+// of the largest extent, 1 m: a box leaves its inflated box after 4 frames or more), over 40
+// frames: after every update the list is sorted, has no duplicate and holds every pair of
+// overlapping closed boxes; it stands on some frames and rebuilds on others.
+BOOST_AUTO_TEST_CASE(verlet_list_holds_every_overlapping_pair) {
+  const std::uint32_t seed = 20261125;
+  BOOST_TEST_MESSAGE("seed " << seed);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> cell(0, 40), size(1, 4), coin(0, 4), step(-1, 1);
+  std::size_t rebuilds = 0, frames = 0;
+  for (int scene = 0; scene < 20; ++scene) {
+    std::vector<BroadPhaseBox> boxes(1 + static_cast<std::size_t>(scene) * 8);
+    for (BroadPhaseBox& b : boxes) {
+      b.xmin = 0.25 * cell(rng);
+      b.ymin = 0.25 * cell(rng);
+      b.xmax = b.xmin + 0.25 * size(rng);
+      b.ymax = b.ymin + 0.25 * size(rng);
+      b.fixed = coin(rng) == 0;
+    }
+    boxes.push_back({-1.0, 12.0, 2.0, 2.5, true});
+    detail::VerletList list;
+    for (int frame = 0; frame < 40; ++frame, ++frames) {
+      rebuilds += list.update(boxes);
+      const std::vector<BlockPair>& pairs = list.pairs();
+      BOOST_TEST_CONTEXT("scene " << scene << ", frame " << frame) {
+        BOOST_TEST((std::adjacent_find(pairs.begin(), pairs.end(), std::greater_equal<>()) == pairs.end()));
+        for (const BlockPair& p : brute_force(boxes)) {
+          BOOST_TEST(std::binary_search(pairs.begin(), pairs.end(), p), p.first << "-" << p.second);
+        }
+      }
+      for (BroadPhaseBox& b : boxes) {
+        if (b.fixed) continue;
+        const double dx = step(rng) / 64.0, dy = step(rng) / 64.0;
+        b.xmin += dx;
+        b.xmax += dx;
+        b.ymin += dy;
+        b.ymax += dy;
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE(rebuilds << " rebuilds in " << frames << " frames");
+  BOOST_TEST(rebuilds > 20u);  // more than the first build of each scene
+  BOOST_TEST(rebuilds < frames / 2);
 }
 
 BOOST_AUTO_TEST_CASE(all_pairs_skips_only_fixed_pairs) {

@@ -598,6 +598,23 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   BOOST_TEST(counted.calls[side] == 1u);
   BOOST_TEST(counted.fallbacks[side] == 1u);
 
+  // A crossing on a line collinear with c (a stacked block's side along the side of the block
+  // below): c's points are 4 and 1 times (0.1, 0.7), b's 0 and 2 times, all exactly on one
+  // line, and their products round, so neither filter certifies the zero. Stage 1c settles it,
+  // with b or with a along c, without the degree-4 evaluation in GMP.
+  const Line along{{0.0, 0.0}, {0.2, 1.4}}, c_line{{0.4, 2.8}, {0.1, 0.7}};
+  const Line across{{-1.0, 0.33}, {1.3, 0.29}};
+  BOOST_TEST_REQUIRE(exact_crossing_side(across, along, c_line) == Sign::zero);
+  BOOST_TEST(!rkd::crossing_side_semi_static(across, along, c_line).has_value());
+  BOOST_TEST(!rkd::certain_sign(rkd::crossing_side_formula<rkd::ErrorBounded>(
+                                    across, along, c_line,
+                                    [](double x, double y) { return rkd::ErrorBounded::difference(x, y); }))
+                  .has_value());
+  rk::reset_predicate_counters();
+  BOOST_TEST((rk::crossing_side<rk::Filtered>(across, along, c_line) == Sign::zero));
+  BOOST_TEST((rk::crossing_side<rk::Filtered>(along, across, c_line) == Sign::zero));
+  BOOST_TEST(rk::predicate_counters().fallbacks[side] == 0u);
+
   // Exact and Float count calls but never fall back.
   rk::reset_predicate_counters();
   BOOST_TEST((rk::orientation<rk::Exact>(a, b, c) == Sign::zero));

@@ -4,9 +4,10 @@
 //
 // Each block carries d = (u0, v0, r0, ex, ey, gxy) (eq. 2): centroid translation, rotation and
 // constant strain, with u(x, y) = T(x, y) d (eq. 3). Per step, from t_n to t_n+1 = t_n + h:
-//   1. contacts: broad phase (a uniform grid above 8 blocks, every pair below) ->
-//      overlap -> IP -> normal force f_n and contact point pg (contact/potential_contact.hpp),
-//      measured for all candidate pairs in parallel (OpenMP), then assembled in pair order;
+//   1. contacts: broad phase (above 8 blocks a uniform grid, kept from step to step as a Verlet
+//      list; every pair below) -> pairs whose bounding boxes' interiors overlap -> overlap ->
+//      IP -> normal force f_n and contact point pg (contact/potential_contact.hpp), measured
+//      for all candidate pairs in parallel (OpenMP), then assembled in pair order;
 //      tangential force from the relative displacement of pg (contact/friction.hpp: the
 //      elastoplastic law by default, the paper's eq. 24-26 on request); the contact dashpot f_d
 //      (below); f = f_n + f_t + f_d applied as T(xg, yg)^T f to CP and its negative to TP
