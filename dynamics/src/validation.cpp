@@ -480,7 +480,12 @@ void small_edge(const Validator& v, std::vector<ValidationRow>& rows, const std:
 struct Collapse {
   std::vector<double> runout, collapsed;  // at 2.5, 5.0, 7.5 s (or the quick times)
   double area_change = 0.0;               // max |A / A0 - 1| of the rock blocks
-  std::size_t lost = 0;                   // blocks outside the domain at the end
+  // Rock blocks whose centroid was ever inside the floor (below its surface y = 0 over its length
+  // -80 <= x <= 52) or behind the wall (x > 50, up to its top): through a boundary. A block that
+  // runs off the floor's far end (x < -80) and falls is a long runout, not a failure: without
+  // contact damping the paper's law bounces a block shot out of the collapse along the floor,
+  // and rounding decides whether one gets that far in 7.5 s.
+  std::size_t through = 0;
   SceneRun run;
 };
 
@@ -489,6 +494,7 @@ Collapse collapse_run(const Validator& v, const std::string& file, const std::ve
   scene.duration = times.back();
   Collapse c;
   std::vector<kernel::Point2> start;
+  std::vector<char> escaped;
   double area0 = 0.0;
   std::size_t next = 0;
   const auto is_rock = [&](std::size_t i) { return i >= scene.generated_first && i < scene.generated_first + scene.generated_count; };
@@ -501,6 +507,16 @@ Collapse collapse_run(const Validator& v, const std::string& file, const std::ve
       area0 = area;
     }
     c.area_change = std::max(c.area_change, std::abs(area / area0 - 1.0));
+    escaped.resize(blocks.size(), 0);
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      const kernel::Point2 p = blocks[i].centroid;
+      const bool in_floor = p.x >= -80.0 && p.x <= 52.0 && p.y < 0.0;
+      const bool behind_wall = p.x > 50.0 && p.y <= 25.0;
+      if (is_rock(i) && !escaped[i] && (in_floor || behind_wall)) {
+        escaped[i] = 1;
+        ++c.through;
+      }
+    }
     if (next >= times.size() || sim.time() < times[next] - 0.5 * scene.params.dt) return;
     double runout = 0.0, moved = 0.0, total = 0.0;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -513,12 +529,6 @@ Collapse collapse_run(const Validator& v, const std::string& file, const std::ve
     c.runout.push_back(runout);
     c.collapsed.push_back(moved / total);
     ++next;
-    if (next == times.size()) {
-      for (std::size_t i = 0; i < blocks.size(); ++i) {
-        const kernel::Point2 p = blocks[i].centroid;
-        if (is_rock(i) && (p.x < -80.0 || p.x > 52.0 || p.y < -2.0)) ++c.lost;
-      }
-    }
   };
   c.run = v.run(scene, file, observe);
   return c;
@@ -545,8 +555,9 @@ void collapse(const Validator& v, std::vector<ValidationRow>& rows) {
                           format(a.collapsed[k]) + " vs " + format(b.collapsed[k]),
                           a.collapsed[k] - b.collapsed[k], Bound::at_least, 0.02, seconds));
   }
-  rows.push_back(judged(name, "blocks lost", "none", std::to_string(a.lost) + " + " + std::to_string(b.lost),
-                        static_cast<double>(a.lost + b.lost), Bound::at_most, 0.0, seconds));
+  rows.push_back(judged(name, "blocks through floor or wall", "none",
+                        std::to_string(a.through) + " + " + std::to_string(b.through),
+                        static_cast<double>(a.through + b.through), Bound::at_most, 0.0, seconds));
   const double area = std::max(a.area_change, b.area_change);
   const double fallbacks = static_cast<double>(a.run.report.predicates.total_fallbacks() + b.run.report.predicates.total_fallbacks());
   const double calls = static_cast<double>(a.run.report.predicates.total_calls() + b.run.report.predicates.total_calls());
