@@ -37,6 +37,22 @@ std::vector<BlockPair> brute_force(const std::vector<BroadPhaseBox>& boxes) {
   return out;
 }
 
+// `count` boxes on a 0.25 m lattice in [0, 10] m², 0.25-1 m wide and high, one in five fixed,
+// then a fixed floor across the whole scene.
+std::vector<BroadPhaseBox> random_boxes(std::mt19937& rng, std::size_t count) {
+  std::uniform_int_distribution<int> cell(0, 40), size(1, 4), coin(0, 4);
+  std::vector<BroadPhaseBox> boxes(count);
+  for (BroadPhaseBox& b : boxes) {
+    b.xmin = 0.25 * cell(rng);
+    b.ymin = 0.25 * cell(rng);
+    b.xmax = b.xmin + 0.25 * size(rng);
+    b.ymax = b.ymin + 0.25 * size(rng);
+    b.fixed = coin(rng) == 0;
+  }
+  boxes.push_back({-1.0, 12.0, 2.0, 2.5, true});
+  return boxes;
+}
+
 }  // namespace
 
 // Random boxes on a coarse grid (so that touching boxes, shared edges and equal left ends are
@@ -46,17 +62,9 @@ BOOST_AUTO_TEST_CASE(uniform_grid_equals_brute_force) {
   const std::uint32_t seed = 20240603;
   BOOST_TEST_MESSAGE("seed " << seed);
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> cell(0, 40), size(1, 4), coin(0, 4);
+  std::uniform_int_distribution<int> coin(0, 4);
   for (int scene = 0; scene < 50; ++scene) {
-    std::vector<BroadPhaseBox> boxes(1 + static_cast<std::size_t>(scene) * 4);
-    for (BroadPhaseBox& b : boxes) {
-      b.xmin = 0.25 * cell(rng);
-      b.ymin = 0.25 * cell(rng);
-      b.xmax = b.xmin + 0.25 * size(rng);
-      b.ymax = b.ymin + 0.25 * size(rng);
-      b.fixed = coin(rng) == 0;
-    }
-    boxes.push_back({-1.0, 12.0, 2.0, 2.5, true});  // a floor across the whole scene
+    std::vector<BroadPhaseBox> boxes = random_boxes(rng, 1 + static_cast<std::size_t>(scene) * 4);
     detail::UniformGrid grid;
     std::vector<BlockPair> pairs;
     for (int frame = 0; frame < 5; ++frame) {
@@ -83,18 +91,10 @@ BOOST_AUTO_TEST_CASE(verlet_list_holds_every_overlapping_pair) {
   const std::uint32_t seed = 20261125;
   BOOST_TEST_MESSAGE("seed " << seed);
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> cell(0, 40), size(1, 4), coin(0, 4), step(-1, 1);
+  std::uniform_int_distribution<int> step(-1, 1);
   std::size_t rebuilds = 0, frames = 0;
   for (int scene = 0; scene < 20; ++scene) {
-    std::vector<BroadPhaseBox> boxes(1 + static_cast<std::size_t>(scene) * 8);
-    for (BroadPhaseBox& b : boxes) {
-      b.xmin = 0.25 * cell(rng);
-      b.ymin = 0.25 * cell(rng);
-      b.xmax = b.xmin + 0.25 * size(rng);
-      b.ymax = b.ymin + 0.25 * size(rng);
-      b.fixed = coin(rng) == 0;
-    }
-    boxes.push_back({-1.0, 12.0, 2.0, 2.5, true});
+    std::vector<BroadPhaseBox> boxes = random_boxes(rng, 1 + static_cast<std::size_t>(scene) * 8);
     detail::VerletList list;
     for (int frame = 0; frame < 40; ++frame, ++frames) {
       rebuilds += list.update(boxes);
