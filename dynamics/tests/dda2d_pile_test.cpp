@@ -21,13 +21,13 @@
 // with a half period of 0.1-0.18 s, so a shorter window could catch a dip between two swings.
 // Such rocking is damped by the contact's rocking dashpot (dda2d.hpp, "Contact damping"): before
 // it, a block left rocking alone on the floor by the drop of seed 4 kept that pile above 1e-6
-// for more than 10 s. Measured: at rest 4.68 s after the release (67 508 steps), 0.15 J/m of
-// kinetic energy against 1.34e6 J/m released (1.2e-7); seeds 1-4: 2.3-4.7 s.
+// for more than 10 s. Measured: at rest 4.24 s after the release (61 190 steps), 0.37 J/m of
+// kinetic energy against 1.34e6 J/m released (2.8e-7); seeds 1-4: 2.6-4.2 s.
 // Every movable centroid is inside the box and no vertex lies beyond the inner face of the
 // floor or a wall by more than the penetration bound below; every contact at rest penetrates
 // less than 1 % of the smallest block's width (0.363 m). What is left at rest is the static load
 // of a few blocks on a vertex, which grows as the square root of the load: measured 2.1 mm
-// (0.58 %) here, 0.49-0.58 % for seeds 1-4. The largest penetration during the drop is reported,
+// (0.58 %) here, 0.48-0.60 % for seeds 1-4. The largest penetration during the drop is reported,
 // not asserted against 1 %: a vertex struck at v into a face sinks as far as
 // delta³ ~ 3 m v² H / (2 kn), about 1 cm for 3 m/s at these kn and H (measured 1.3 cm, 3.6 %
 // of the smallest width; 0.94-1.3 cm for seeds 1-4); 1 % would take kn 20 times stiffer and a
@@ -47,11 +47,11 @@
 // allows 1.9 mm to the lowest centroid (0.19 m up), less than a block slipping or rolling off
 // its support would move; 1 % of the pile's height (2.8 m) would allow 28 mm everywhere, enough
 // for a bottom block to slide out from under its load unnoticed. The relaxation only reloads the
-// tangential springs (f / kt, a few 1e-5 m) and adjusts the normal overlaps. Measured: 4 733
-// iterations, the largest change 1.1e-4 m (9.8e-5 of that block's height); seeds 1-4: 2 924-4 290
-// iterations, at most 1.3e-4 of a block's height.
+// tangential springs (f / kt, a few 1e-5 m) and adjusts the normal overlaps. Measured: 4 247
+// iterations, the largest change 8.8e-5 m (5.5e-5 of that block's height); seeds 1-4: 3 196 to
+// 19 353 iterations, at most 3.3e-4 of a block's height.
 //
-// Wall time (Release, one thread, on the shared 2-core machine): drop 53 s, static analysis 4 s.
+// Wall time (Release, one thread, on the shared 2-core machine): drop 52 s, static analysis 5 s.
 
 #include <algorithm>
 #include <chrono>
