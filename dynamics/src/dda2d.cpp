@@ -778,6 +778,14 @@ void Dda2d::Impl::check_penetration(const PartContact& m) {
   const auto [i, j, p, q] = m.parts;
   max_penetration = std::max(max_penetration, m.depth);
   const double limit = penetration_fraction * std::min(bodies[i].inradius, bodies[j].inradius);
+  if (m.depth > limit && steps == 0 && !settling) {
+    throw std::invalid_argument(
+        "dda2d: " + block_name(states[i].id) + " and " + block_name(states[j].id) + " overlap by " +
+        number(m.depth) + " m at the start (minimum translation distance), more than half the "
+        "smaller inradius (" + number(limit) + " m): the starting geometry overlaps beyond what "
+        "the contact can push apart; move the blocks apart (blocks resting on each other may "
+        "overlap by a small fraction of their size)");
+  }
   if (m.depth > limit) {
     throw StabilityError(at_step() + block_name(states[i].id) + " and " + block_name(states[j].id) +
                          " overlap by " + number(m.depth) +

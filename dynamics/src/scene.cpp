@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -17,7 +18,11 @@ namespace {
 
 using nlohmann::json;
 
+// The scene format this version reads ("format", optional).
+constexpr std::string_view scene_format = "rockcontact-scene/1";
+
 constexpr JsonField scene_fields[] = {
+    {"format", false, "\"rockcontact-scene/1\""},
     {"description", false, "a string"},
     {"dimension", true, "2"},
     {"time", true, "an object {\"dt\", \"duration\"}"},
@@ -53,7 +58,9 @@ constexpr JsonField material_fields[] = {
 constexpr JsonField contact_fields[] = {
     {"law", true, "\"potential\" (the distance-potential contact of seed 000)"},
     {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
-    {"H", true, "the potential length scale H: a length in m > 0, \"mean_edge\" or \"inscribed\""},
+    {"H", true,
+     "the potential length scale H: a length in m > 0, \"mean_edge\", \"mean_edge_movable\" or "
+     "\"inscribed\""},
     {"kt", false, "the tangential penalty kt in N/m, a finite number > 0"},
     {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
     {"friction", false,
@@ -125,6 +132,7 @@ std::optional<Analysis> parse_analysis(std::string_view text) {
 
 std::optional<HRule> parse_h_rule(std::string_view text) {
   if (text == "mean_edge") return HRule::mean_edge;
+  if (text == "mean_edge_movable") return HRule::mean_edge_movable;
   if (text == "inscribed") return HRule::inscribed;
   return std::nullopt;
 }
@@ -151,6 +159,20 @@ std::string cut_error_path(const std::string& region_path, const kernel::Invalid
 class SceneParser {
  public:
   explicit SceneParser(const std::string& source) : reader_(source) {}
+
+  // "rockcontact-scene/N": only N = 1 is read; a later N names the version it needs.
+  void format(const json& document) const {
+    if (!document.contains("format")) return;
+    const json& value = document.at("format");
+    const std::string_view prefix = "rockcontact-scene/";
+    if (value.is_string() && value.get_ref<const std::string&>() == scene_format) return;
+    if (value.is_string() && value.get_ref<const std::string&>().starts_with(prefix)) {
+      reader_.fail("format", "the scene is written in format " + value.get<std::string>() +
+                                 "; this rockcontact reads " + std::string(scene_format) +
+                                 ": read it with the version that wrote it, or rewrite it");
+    }
+    reader_.fail_expected("format", expected(scene_fields, "format"), value);
+  }
 
   void dimension(const json& document) const {
     if (!document.contains("dimension")) {
@@ -414,6 +436,16 @@ class SceneParser {
       case HRule::mean_edge:
         scene.law.normal.H = mean_edge_length(scene.blocks);
         return;
+      case HRule::mean_edge_movable: {
+        std::vector<BlockSpec> movable;
+        std::copy_if(scene.blocks.begin(), scene.blocks.end(), std::back_inserter(movable),
+                     [](const BlockSpec& b) { return !b.fixed; });
+        if (movable.empty()) {
+          reader_.fail("contact.H", "\"mean_edge_movable\" needs a block that is not fixed");
+        }
+        scene.law.normal.H = mean_edge_length(movable);
+        return;
+      }
       case HRule::inscribed:
         scene.law.normal.H = smallest_inscribed_radius(scene.blocks);
         return;
@@ -733,6 +765,8 @@ std::string_view to_string(HRule rule) {
       return "given";
     case HRule::mean_edge:
       return "mean_edge";
+    case HRule::mean_edge_movable:
+      return "mean_edge_movable";
     case HRule::inscribed:
       return "inscribed";
   }
@@ -844,6 +878,7 @@ Scene parse_scene(const json& document, const std::string& source_name) {
   if (!document.is_object()) {
     reader.fail_expected("", "a JSON object {\"dimension\", \"time\", \"blocks\", ...}", document);
   }
+  parser.format(document);
   parser.dimension(document);
   reader.check_object(document, "", "a scene object", scene_fields);
   Scene scene;

@@ -237,6 +237,27 @@ BOOST_AUTO_TEST_CASE(penetration_deeper_than_half_the_inradius_stops_the_run) {
   }
 }
 
+// A block placed 0.3 m deep inside its base (more than half its inradius, 0.25 m) is refused at
+// the start as overlapping geometry, naming both blocks and the depth, whatever kn: it is the
+// input that is wrong, not the contact's stiffness or the step.
+BOOST_AUTO_TEST_CASE(blocks_overlapping_at_the_start_are_refused_as_input) {
+  BlockSpec base = block("base", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}});
+  base.fixed = true;
+  const BlockSpec sunk = block("sunk", square(-0.5, -0.3, 1));
+  for (const bool presolve : {false, true}) {
+    DdaParams p = params(1.0e-4, {0.0, -9.81});
+    p.initial_equilibrium = presolve;
+    try {
+      Dda2d({base, sunk}, frictionless(1.0e9), p);
+      BOOST_FAIL("a block 0.3 m inside its base was accepted");
+    } catch (const std::invalid_argument& e) {
+      BOOST_TEST_MESSAGE(e.what());
+      BOOST_TEST(message_has(e, "block 'base' and block 'sunk' overlap by 0.3 m at the start"));
+      BOOST_TEST(message_has(e, "the starting geometry overlaps"));
+    }
+  }
+}
+
 // (6) A clockwise block: kernel::InvalidPolygon naming the block by its id.
 BOOST_AUTO_TEST_CASE(clockwise_block_is_rejected_by_id) {
   std::vector<Point2> clockwise = square(3, 0, 1);

@@ -176,6 +176,27 @@ BOOST_AUTO_TEST_CASE(mean_edge_H_is_the_mean_of_all_edges) {
   BOOST_TEST(dyn::mean_edge_length(scene.blocks) == hand, boost::test_tools::tolerance(1e-15));
 }
 
+// The same over the blocks that move, a and b (the fixed ground's 4 m edges left out):
+// (4 + 1 + 2 sqrt(1.25)) / 7. Growing the ground leaves it unchanged.
+BOOST_AUTO_TEST_CASE(mean_edge_movable_H_leaves_the_fixed_blocks_out) {
+  json document = minimal_scene();
+  document["contact"]["H"] = "mean_edge_movable";
+  const double hand = (5.0 + 2.0 * std::sqrt(1.25)) / 7.0;
+  const dyn::Scene scene = dyn::parse_scene(document, "minimal.json");
+  BOOST_TEST((scene.h_rule == dyn::HRule::mean_edge_movable));
+  BOOST_TEST(scene.law.normal.H == hand, boost::test_tools::tolerance(1e-15));
+  document["blocks"][0]["vertices"] = json::parse("[[-40, -9], [44, -9], [44, 1], [-40, 1]]");
+  BOOST_TEST(dyn::parse_scene(document, "minimal.json").law.normal.H == hand,
+             boost::test_tools::tolerance(1e-15));
+  for (json& block : document["blocks"]) block["fixed"] = true;
+  BOOST_CHECK_EXCEPTION(dyn::parse_scene(document, "minimal.json"), dyn::InputError,
+                        [](const dyn::InputError& e) {
+                          return e.path() == "contact.H" &&
+                                 std::string(e.what()).find("needs a block that is not fixed") !=
+                                     std::string::npos;
+                        });
+}
+
 // Hand values: the triangle b has sides 1, sqrt(1.25), sqrt(1.25) and area 0.5, so its inradius
 // is area / semi-perimeter = 0.5 / (0.5 + sqrt(1.25)); the squares' is 0.5 and the ground's 0.5.
 BOOST_AUTO_TEST_CASE(inscribed_H_is_the_smallest_inscribed_radius) {
@@ -227,10 +248,15 @@ BOOST_AUTO_TEST_CASE(step_count_rounds_up_but_not_for_decimal_noise) {
 
 BOOST_AUTO_TEST_CASE(top_level_errors) {
   expect_error([](json& d) { d["dimension"] = 3; }, "dimension", "3D scenes are not supported yet");
+  expect_error([](json& d) { d["format"] = "rockcontact-scene/2"; }, "format",
+               "the scene is written in format rockcontact-scene/2; this rockcontact reads "
+               "rockcontact-scene/1");
+  expect_error([](json& d) { d["format"] = 1; }, "format",
+               R"(expected "rockcontact-scene/1", got number 1)");
   expect_error([](json& d) { d["dimension"] = "2"; }, "dimension", "expected 2, got string");
   expect_error([](json& d) { d.erase("dimension"); }, "dimension", "missing field");
   expect_error([](json& d) { d["colour"] = "red"; }, "colour",
-               "unknown field; expected only description, dimension, time");
+               "unknown field; expected only format, description, dimension, time");
   expect_error([](json& d) { d.erase("time"); }, "time", "missing field");
   expect_error([](json& d) { d["time"]["dt"] = -1e-4; }, "time.dt",
                "expected the time step in s, a finite number > 0, got number -0.0001");
@@ -258,7 +284,7 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
                R"(expected "potential")");
   expect_error([](json& d) { d["contact"]["kn"] = 0; }, "contact.kn", "a finite number > 0");
   expect_error([](json& d) { d["contact"]["H"] = "median"; }, "contact.H",
-               R"(a length in m > 0, "mean_edge" or "inscribed", got string "median")");
+               R"(a length in m > 0, "mean_edge", "mean_edge_movable" or "inscribed", got string "median")");
   expect_error([](json& d) { d["contact"]["H"] = -1.0; }, "contact.H", "a length in m > 0");
   expect_error([](json& d) { d["contact"].erase("friction_angle_deg"); },
                "contact.friction_angle_deg", "kt and friction_angle_deg come together");

@@ -335,7 +335,8 @@ class StabilityError : public std::runtime_error {
 class Dda2d {
  public:
   // Validates everything (throws kernel::InvalidPolygon naming the block, std::invalid_argument
-  // naming the parameter or block) and refuses dt above the critical estimate 2 / omega_max
+  // naming the parameter or block, or the two blocks that overlap at the start by more than the
+  // monitor's penetration limit below) and refuses dt above the critical estimate 2 / omega_max
   // from the largest block and contact stiffness (StabilityError naming dt, the estimate and
   // the block or pair that set it). Evaluates the forces at t = 0 (contacts() is valid).
   Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params);

@@ -2,7 +2,9 @@
 // Scenes: the JSON documents `rockcontact run` reads, mapped onto the explicit 2D DDA
 // (dda2d.hpp). Every field is checked; unknown fields are errors naming the file and JSON path.
 //
-//   {"description": text                                 (optional, ignored by the run)
+//   {"format": "rockcontact-scene/1"                     (optional; another version is an
+//                                                          error naming the one it needs)
+//    "description": text                                  (optional, ignored by the run)
 //    "dimension": 2                                       (3: "not supported yet")
 //    "time": {"dt": s > 0, "duration": s > 0},            (duration / dt at most 1e12 steps)
 //    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
@@ -19,7 +21,7 @@
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
 //                         "poisson_ratio": -1 < nu < 0.5}, ...},
 //    "contact": {"law": "potential", "kn": Pa > 0,
-//                "H": m > 0 | "mean_edge" | "inscribed",
+//                "H": m > 0 | "mean_edge" | "mean_edge_movable" | "inscribed",
 //                "kt": N/m > 0, "friction_angle_deg": 0 <= phi < 90   (both or neither;
 //                                                                       neither: frictionless)
 //                "friction": "elastoplastic" | "paper"  (optional, default elastoplastic;
@@ -71,6 +73,9 @@
 //                boundary segments not: their rectangles' depth is a construction aid): a
 //                unified H in the sense of §5.1, the same for every pair (the paper's own
 //                unified value there is the average of the longest and shortest edge);
+//   "mean_edge_movable"  the same over the blocks that are not fixed: the contact stiffness then
+//                does not depend on how large a fixed base or slope is drawn (with "mean_edge",
+//                a 0.5 m block on a large drawn slope got H = 3.55 m);
 //   "inscribed"  the paper's "previous approach" (§5.1) used each block's inscribed-circle
 //                radius as its own H. Our contact law takes one H per scene, so this is the
 //                smallest inscribed radius over all blocks (fixed ones included, boundary
@@ -94,7 +99,7 @@
 
 namespace rockcontact::dynamics {
 
-enum class HRule { given, mean_edge, inscribed };
+enum class HRule { given, mean_edge, mean_edge_movable, inscribed };
 
 std::string_view to_string(HRule rule);
 
