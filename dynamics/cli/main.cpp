@@ -11,11 +11,13 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +25,7 @@
 #include "fuzz_cases.hpp"
 #include "rockcontact/dynamics/atomic_file.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
+#include "rockcontact/dynamics/json_read.hpp"
 #include "rockcontact/dynamics/pairs_compare.hpp"
 #include "rockcontact/dynamics/pairs_io.hpp"
 #include "rockcontact/dynamics/pairs_summary.hpp"
@@ -145,6 +148,8 @@ struct RunArgs {
   std::size_t checkpoint_every = 0;
   std::string restart;
   std::size_t threads = 0;  // DdaParams::threads: 0 is one per core
+  std::optional<double> dt;        // overrides time.dt, s
+  std::optional<double> duration;  // overrides time.duration, s
 };
 
 bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
@@ -164,10 +169,12 @@ class ProgressBar {
     const std::size_t filled = permille * width / 1000;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double remaining =
+        done == 0 ? 0.0 : elapsed * static_cast<double>(total - done) / static_cast<double>(done);
     std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
               << std::fixed << std::setprecision(1) << std::setw(5)
               << static_cast<double>(permille) / 10.0 << "%  step " << done << '/' << total << "  "
-              << elapsed << " s" << std::defaultfloat << std::flush;
+              << elapsed << " s, " << remaining << " s to go   " << std::defaultfloat << std::flush;
     drawn_ = true;
   }
 
@@ -185,7 +192,14 @@ class ProgressBar {
 };
 
 int run_run(const RunArgs& options) {
-  dyn::Scene scene = dyn::read_scene_file(options.scene);
+  // --dt and --duration replace the document's values before it is parsed, so the scene's checks
+  // and its digest (checkpoints) see them.
+  nlohmann::json document = dyn::read_json_file(options.scene);
+  if (document.is_object() && document.contains("time") && document["time"].is_object()) {
+    if (options.dt) document["time"]["dt"] = *options.dt;
+    if (options.duration) document["time"]["duration"] = *options.duration;
+  }
+  dyn::Scene scene = dyn::parse_scene(document, options.scene);
   scene.params.threads = options.threads;
   ProgressBar bar;
   dyn::RunOptions run_options;
@@ -249,6 +263,24 @@ void add_run(CLI::App& app, int& exit_status) {
                   "Replace OUT/checkpoint.json with the full state every N steps (0: never)");
   sub->add_option("--restart", options->restart,
                   "Resume from a checkpoint.json of this scene (bit-identical continuation)");
+  const auto positive_seconds = [](const std::string& text) -> std::string {
+    double value = 0.0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(text, &used);
+      if (used != text.size()) return "expected a time in s, a finite number > 0, got " + text;
+    } catch (const std::exception&) {
+      return "expected a time in s, a finite number > 0, got " + text;
+    }
+    return std::isfinite(value) && value > 0.0
+               ? std::string()
+               : "expected a time in s, a finite number > 0, got " + text;
+  };
+  sub->add_option("--dt", options->dt, "Time step in s, overrides the scene's time.dt")
+      ->check(CLI::Validator(positive_seconds, "SECONDS"));
+  sub->add_option("--duration", options->duration,
+                  "Simulated time in s, overrides the scene's time.duration")
+      ->check(CLI::Validator(positive_seconds, "SECONDS"));
   sub->add_option("--threads", options->threads,
                   "Threads of the engine's parallel passes (0: one per core); the results do not "
                   "depend on it")

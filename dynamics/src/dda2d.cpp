@@ -767,6 +767,8 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
     c.friction_force = r.force;
     c.sliding = r.sliding;
     friction_dissipated += r.dissipated;
+  } else {
+    c.sliding = true;  // the Coulomb limit of a frictionless interface is zero
   }
   if (law.damping_ratio > 0.0 && !settling) dashpot(c, m);
   apply_contact(c);

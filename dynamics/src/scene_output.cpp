@@ -126,6 +126,66 @@ void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
   output.commit();
 }
 
+// One contact row of contacts.csv and contacts_NNNN.vtp.
+struct ContactRow {
+  std::string a, b;
+  double x, y, nx, ny, fn, ft;
+  int state;  // 0 stick, 1 slide, 2 open
+};
+
+constexpr const char* state_names[] = {"stick", "slide", "open"};
+
+void write_contact_vtp(const fs::path& file, std::span<const ContactRow> rows) {
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << rows.size() << "\" NumberOfVerts=\"" << rows.size()
+      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+      << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const ContactRow& r : rows) out << "          " << number(r.x) << ' ' << number(r.y) << " 0\n";
+  out << "        </DataArray>\n      </Points>\n      <Verts>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (std::size_t k = 0; k < rows.size(); ++k) out << ' ' << k;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  for (std::size_t k = 0; k < rows.size(); ++k) out << ' ' << k + 1;
+  out << "\n        </DataArray>\n      </Verts>\n"
+      << "      <PointData Scalars=\"fn\" Vectors=\"normal\">\n"
+      << "        <DataArray type=\"Float64\" Name=\"normal\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const ContactRow& r : rows) out << "          " << number(r.nx) << ' ' << number(r.ny) << " 0\n";
+  out << "        </DataArray>\n";
+  for (const auto& [name, member] : {std::pair{"fn", &ContactRow::fn}, std::pair{"ft", &ContactRow::ft}}) {
+    out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
+    for (const ContactRow& r : rows) out << ' ' << number(r.*member);
+    out << "\n        </DataArray>\n";
+  }
+  out << "        <DataArray type=\"Int32\" Name=\"state\" format=\"ascii\">\n         ";
+  for (const ContactRow& r : rows) out << ' ' << r.state;
+  out << "\n        </DataArray>\n      </PointData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  output.commit();
+}
+
+// A ParaView collection of the files of `frames`.
+void write_pvd(const fs::path& file, std::span<const std::pair<double, std::string>> frames) {
+  AtomicFile pvd(file);
+  std::ostream& out = pvd.stream();
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  for (const auto& [time, name] : frames) {
+    out << "    <DataSet timestep=\"" << number(time) << "\" group=\"\" part=\"0\" file=\""
+        << name << "\"/>\n";
+  }
+  out << "  </Collection>\n</VTKFile>\n";
+  pvd.commit();
+}
+
 void write_svg(const fs::path& file, std::span<const BlockState> blocks,
                std::span<const std::string> tracked, double time) {
   constexpr double width_px = 800.0;
@@ -209,10 +269,12 @@ SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
   energies_->stream() << 't';
   for (const auto& term : energy_terms(Energies{})) energies_->stream() << ',' << term.first;
   energies_->stream() << '\n';
+  contacts_.emplace(dir_ / "contacts.csv");
+  contacts_->stream() << "t,block_a,block_b,x,y,nx,ny,fn,ft,state\n";
 }
 
 void SceneRecorder::record(double time, std::span<const BlockState> blocks,
-                           const Energies& energies) {
+                           std::span<const ContactState> contacts, const Energies& energies) {
   for (const std::string& id : track_) {
     const auto it =
         std::find_if(blocks.begin(), blocks.end(), [&](const BlockState& b) { return b.id == id; });
@@ -227,27 +289,46 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks,
   for (const auto& term : energy_terms(energies)) energies_->stream() << ',' << number(term.second);
   energies_->stream() << '\n';
   if (!energies_->stream()) throw OutputError("cannot write " + energies_->target().string());
+  std::vector<ContactRow> rows;
+  std::map<std::array<std::size_t, 4>, Open> now;
+  for (const ContactState& c : contacts) {
+    const double size = std::hypot(c.normal_force.x, c.normal_force.y);
+    const double nx = c.normal_force.x / size, ny = c.normal_force.y / size;
+    const double fx = c.normal_force.x + c.friction_force.x + c.damping_force.x;
+    const double fy = c.normal_force.y + c.friction_force.y + c.damping_force.y;
+    ContactRow& r = rows.emplace_back(ContactRow{blocks[c.cp].id, blocks[c.tp].id, c.point.x,
+                                                 c.point.y, nx, ny, fx * nx + fy * ny,
+                                                 -fx * ny + fy * nx, c.sliding ? 1 : 0});
+    now[{c.cp, c.tp, c.cp_part, c.tp_part}] = {r.a, r.b, r.x, r.y, r.nx, r.ny};
+  }
+  for (const auto& [key, gone] : last_contacts_) {
+    if (!now.contains(key)) rows.push_back({gone.a, gone.b, gone.x, gone.y, gone.nx, gone.ny, 0.0, 0.0, 2});
+  }
+  last_contacts_ = std::move(now);
+  for (const ContactRow& r : rows) {
+    contacts_->stream() << number(time) << ',' << csv_field(r.a) << ',' << csv_field(r.b) << ','
+                        << number(r.x) << ',' << number(r.y) << ',' << number(r.nx) << ','
+                        << number(r.ny) << ',' << number(r.fn) << ',' << number(r.ft) << ','
+                        << state_names[r.state] << '\n';
+  }
+  if (!contacts_->stream()) throw OutputError("cannot write " + contacts_->target().string());
   std::string index = std::to_string(frames_.size());
   index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
-  const std::string name = "frame_" + index + ".vtp";
-  write_vtp(dir_ / name, blocks);
-  frames_.push_back({time, name});
+  write_vtp(dir_ / ("frame_" + index + ".vtp"), blocks);
+  write_contact_vtp(dir_ / ("contacts_" + index + ".vtp"), rows);
+  frames_.push_back({time, index});
 }
 
 void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_json& summary) {
   tracks_->commit();
   energies_->commit();
-  AtomicFile pvd(dir_ / "frames.pvd");
-  std::ostream& out = pvd.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "  <Collection>\n";
-  for (const Frame& f : frames_) {
-    out << "    <DataSet timestep=\"" << number(f.time) << "\" group=\"\" part=\"0\" file=\""
-        << f.file << "\"/>\n";
+  contacts_->commit();
+  for (const auto& [prefix, collection] : {std::pair{"frame_", "frames.pvd"},
+                                             std::pair{"contacts_", "contacts.pvd"}}) {
+    std::vector<std::pair<double, std::string>> files;
+    for (const Frame& f : frames_) files.emplace_back(f.time, prefix + f.index + ".vtp");
+    write_pvd(dir_ / collection, files);
   }
-  out << "  </Collection>\n</VTKFile>\n";
-  pvd.commit();
   write_svg(dir_ / "final.svg", blocks, track_, frames_.empty() ? 0.0 : frames_.back().time);
   AtomicFile summary_file(dir_ / "summary.json");
   summary_file.stream() << summary.dump(2) << '\n';
@@ -328,7 +409,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const bool static_analysis = scene.params.analysis == Analysis::static_equilibrium;
   const auto record = [&] {
     if (static_analysis) report.balance.emplace_back(simulation.steps(), simulation.balance_ratio());
-    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks(), simulation.energies()); });
+    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks(), simulation.contacts(),
+                                        simulation.energies()); });
   };
   // Fills the report from the simulation as it stands and completes the files.
   const auto conclude = [&] {

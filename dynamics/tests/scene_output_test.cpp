@@ -4,6 +4,7 @@
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 #include <boost/test/unit_test.hpp>
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -190,15 +191,15 @@ BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
   {
     dyn::SceneRecorder recorder(scene, dir);
     dyn::Energies energies;
-    recorder.record(0.0, blocks, energies);
+    recorder.record(0.0, blocks, {}, energies);
     energies.kinetic = 0.5;
     energies.gravitational = -2.0;
     energies.contact = 1.25;
     energies.friction_dissipated = 0.125;
     energies.damping_dissipated = 0.0625;
-    recorder.record(0.1, blocks, energies);
+    recorder.record(0.1, blocks, {}, energies);
     energies.strain = 0.03125;
-    recorder.record(0.2, blocks, energies);
+    recorder.record(0.2, blocks, {}, energies);
     BOOST_TEST(recorder.frames() == 3u);
     recorder.finish(blocks, json::object({{"status", "completed"}}));
   }
@@ -408,4 +409,102 @@ BOOST_AUTO_TEST_CASE(two_block_run_writes_the_contract_outputs) {
 BOOST_AUTO_TEST_CASE(unstable_time_step_is_refused) {
   const dyn::Scene scene = dyn::read_scene_file(scene_dir + "/unstable.json");
   BOOST_CHECK_THROW(dyn::run_scene(scene), dyn::StabilityError);
+}
+
+namespace {
+
+// contacts.csv: checks the header, returns the rows split into fields.
+std::vector<std::vector<std::string>> read_contacts(const fs::path& file) {
+  const std::vector<std::string> lines = split(read_text(file), '\n');
+  BOOST_TEST_REQUIRE(!lines.empty());
+  BOOST_TEST(lines[0] == "t,block_a,block_b,x,y,nx,ny,fn,ft,state");
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    rows.push_back(split(lines[i], ','));
+    BOOST_TEST_REQUIRE(rows.back().size() == 10u);
+  }
+  return rows;
+}
+
+}  // namespace
+
+// A column of four rigid 1 m squares on a fixed floor, relaxed by the static analysis to an
+// out-of-balance ratio of 1e-10: at the last instant the interface under the k-th block from
+// the top carries the weight of the k blocks down to it, k m g (statics), pointing down on the
+// lower block (CP, the lower index) and up on the upper, with no shear. The ratio bounds each
+// block's unbalanced force by 1e-10 of the largest force, 4 m g, so the sums from the top are
+// within 4e-10 of it: bound 1e-9 relative. Every contact sticks (phi = 30°, no shear load).
+BOOST_AUTO_TEST_CASE(contacts_csv_carries_a_static_column_s_weights) {
+  const fs::path dir = fresh_dir("column");
+  json document = json::parse(R"({"dimension": 2, "analysis": "static", "static_tolerance": 1e-10,
+   "initial_equilibrium": false, "time": {"dt": 1e-4, "duration": 10},
+   "materials": {"rock": {"density": 2500, "youngs_modulus": 1e10, "poisson_ratio": 0.25}},
+   "contact": {"law": "potential", "kn": 1e9, "H": 1.0, "kt": 1e9, "friction_angle_deg": 30},
+   "blocks": [{"id": "floor", "material": "rock", "vertices": [[-2,-1],[2,-1],[2,0],[-2,0]],
+               "fixed": true}],
+   "output": {"every": 1000}})");
+  for (int k = 0; k < 4; ++k) {
+    const double y = k;
+    document["blocks"].push_back({{"id", "b" + std::to_string(k)}, {"material", "rock"}, {"rigid", true},
+                                  {"vertices", {{-0.5, y}, {0.5, y}, {0.5, y + 1}, {-0.5, y + 1}}}});
+  }
+  dyn::RunOptions options;
+  options.out_dir = dir;
+  const dyn::RunReport report = dyn::run_scene(dyn::parse_scene(document, "column.json"), options);
+  BOOST_TEST_REQUIRE(report.converged);
+  const double weight = 2500.0 * 9.81;
+  std::vector<std::vector<std::string>> last;
+  for (const auto& row : read_contacts(dir / "contacts.csv")) {
+    if (std::stod(row[0]) == report.time) last.push_back(row);
+  }
+  BOOST_TEST_REQUIRE(last.size() == 4u);
+  const std::vector<std::string> lower{"floor", "b0", "b1", "b2"}, upper{"b0", "b1", "b2", "b3"};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& row = last[k];
+    BOOST_TEST_CONTEXT("contact " << row[1] << " / " << row[2]) {
+      BOOST_TEST(row[1] == lower[k]);
+      BOOST_TEST(row[2] == upper[k]);
+      BOOST_TEST(std::stod(row[5]) == 0.0, boost::test_tools::tolerance(1e-9));   // nx
+      BOOST_TEST(std::stod(row[6]) == -1.0, boost::test_tools::tolerance(1e-9));  // ny: down on a
+      BOOST_TEST(std::stod(row[7]) / ((4.0 - k) * weight) == 1.0, boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(std::fabs(std::stod(row[8])) < 1e-9 * weight);
+      BOOST_TEST(row[9] == "stick");
+    }
+  }
+  const auto rows = read_contacts(dir / "contacts.csv");
+  const auto at_start = std::count_if(rows.begin(), rows.end(),
+                                      [](const auto& row) { return row[0] == "0"; });
+  const pt::ptree vtp = read_xml(dir / "contacts_0000.vtp");
+  BOOST_TEST(vtp.get<std::size_t>("VTKFile.PolyData.Piece.<xmlattr>.NumberOfPoints") ==
+             static_cast<std::size_t>(at_start));
+  BOOST_TEST(read_pvd(dir / "contacts.pvd").size() == report.frames);
+}
+
+// A square pressed 0.1 mm into a frictionless floor and thrown upwards at 1 m/s: at t = 0 the
+// contact is there (slide: frictionless), by the next recorded instant (5 steps, 0.5 mm of
+// flight) it has opened, which is written once, with the last point and normal and no force.
+BOOST_AUTO_TEST_CASE(contacts_csv_writes_an_opening_once) {
+  const fs::path dir = fresh_dir("opening");
+  const json document = json::parse(R"({"dimension": 2, "initial_equilibrium": false,
+   "time": {"dt": 1e-4, "duration": 0.002}, "gravity": [0, 0],
+   "materials": {"rock": {"density": 2500, "youngs_modulus": 1e10, "poisson_ratio": 0.25}},
+   "contact": {"law": "potential", "kn": 1e8, "H": 1.0},
+   "blocks": [{"id": "floor", "material": "rock", "vertices": [[-2,-1],[2,-1],[2,0],[-2,0]],
+               "fixed": true},
+              {"id": "box", "material": "rock", "rigid": true, "velocity": [0, 1, 0],
+               "vertices": [[-0.5,-0.0001],[0.5,-0.0001],[0.5,0.9999],[-0.5,0.9999]]}],
+   "output": {"every": 5}})");
+  dyn::RunOptions options;
+  options.out_dir = dir;
+  dyn::run_scene(dyn::parse_scene(document, "opening.json"), options);
+  const auto rows = read_contacts(dir / "contacts.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 2u);
+  BOOST_TEST(rows[0][0] == "0");
+  BOOST_TEST(rows[0][9] == "slide");
+  BOOST_TEST(std::stod(rows[0][7]) > 0.0);
+  BOOST_TEST(rows[1][0] == shortest(5e-4));
+  BOOST_TEST(rows[1][9] == "open");
+  BOOST_TEST((rows[1][1] == "floor" && rows[1][2] == "box"));
+  BOOST_TEST((rows[1][3] == rows[0][3] && rows[1][4] == rows[0][4]));  // the last point
+  BOOST_TEST((rows[1][7] == "0" && rows[1][8] == "0"));
 }

@@ -257,7 +257,8 @@ struct ContactState {
   Vector2 friction_force;    // on CP, N/m; on TP the opposite; zero when frictionless
   Vector2 damping_force;     // the dashpot's, on CP, N/m; on TP the opposite; zero without one
   double damping_moment = 0.0;  // the rocking dashpot's, on CP, N m/m; on TP the opposite
-  bool sliding = false;      // the friction force is at the Coulomb limit
+  bool sliding = false;      // the friction force is at the Coulomb limit (always, when
+                             // frictionless: the limit is zero)
   double penetration = 0.0;  // minimum translation distance that separates the pair, m
 };
 

@@ -11,6 +11,17 @@
 //                  rows. total stays at its start value up to the integrator's O(dt²) error,
 //                  so its drift is the balance's error. A static analysis writes them too,
 //                  though its fictitious motion gives them no physical meaning.
+//   contacts.csv   header exactly "t,block_a,block_b,x,y,nx,ny,fn,ft,state": a row per contact
+//                  (per pair of convex parts in contact) at the same instants: the ids of CP (a,
+//                  the lower index) and TP (b), the contact point (m), the unit normal n of the
+//                  normal force on a, and the total contact force on a (N/m; on b the opposite)
+//                  split into fn along n and ft along t = (-ny, nx) (dashpots included; the
+//                  friction force is along t). state is "stick", "slide" (the friction force at
+//                  the Coulomb limit; always on a frictionless interface) or "open": written once
+//                  for a pair in contact at the previous instant and no longer, with its last
+//                  point and normal and fn = ft = 0.
+//   contacts_NNNN.vtp, contacts.pvd  the same as VTK points, with point data "normal" (nx, ny,
+//                  0), "fn", "ft" and "state" (0 stick, 1 slide, 2 open).
 //   frame_NNNN.vtp VTK XML PolyData, one polygon per block (scene order), written at the same
 //                  instants as the track rows; cell data: "block" (index in the scene),
 //                  "fixed" (0/1), "velocity" (vx, vy, 0) m/s, "omega" rad/s, "stress"
@@ -29,7 +40,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <array>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
@@ -50,8 +63,9 @@ class SceneRecorder {
   // Throws OutputError when the directory or tracks.csv cannot be created.
   SceneRecorder(const Scene& scene, std::filesystem::path dir);
 
-  // Track rows, an energies row and one frame of the state at `time` (s).
-  void record(double time, std::span<const BlockState> blocks, const Energies& energies);
+  // Track rows, an energies row, contact rows and one frame of the state at `time` (s).
+  void record(double time, std::span<const BlockState> blocks,
+              std::span<const ContactState> contacts, const Energies& energies);
 
   // frames.pvd, final.svg of `blocks`, summary.json; throws OutputError if one cannot be written.
   void finish(std::span<const BlockState> blocks, const nlohmann::ordered_json& summary);
@@ -61,7 +75,7 @@ class SceneRecorder {
  private:
   struct Frame {
     double time;
-    std::string file;
+    std::string index;  // NNNN of frame_NNNN.vtp and contacts_NNNN.vtp
   };
 
   std::filesystem::path dir_;
@@ -69,7 +83,15 @@ class SceneRecorder {
   std::size_t frame_digits_;
   std::optional<AtomicFile> tracks_;    // set in the constructor, once the directory exists
   std::optional<AtomicFile> energies_;  // likewise
+  std::optional<AtomicFile> contacts_;  // likewise
   std::vector<Frame> frames_;
+  // The contacts of the last recorded instant, by (cp, tp, cp_part, tp_part): ids, point and
+  // normal, for the "open" row of a pair that has separated since.
+  struct Open {
+    std::string a, b;
+    double x, y, nx, ny;
+  };
+  std::map<std::array<std::size_t, 4>, Open> last_contacts_;
 };
 
 struct RunReport {
