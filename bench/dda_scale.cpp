@@ -17,7 +17,7 @@
 // compares with their own code.
 //
 // Usage: dda_scale [--max N] [--steps S] [--warmup W] [--threads "1 2"] [--settled N]
-// Measured figures are quoted in the README with the command that made them.
+// Measured figures are quoted in docs/performance.md with the command that made them.
 
 #include <algorithm>
 #include <chrono>

@@ -9,7 +9,7 @@
 // blocks) of convex polygons with 5 to 8 vertices on an ellipse (always strictly convex) of
 // semi-axes a in [0.26, 0.34] m, b in [0.8, 1] a, turned at random; each row 3 cm above the
 // highest block of the row below, the lowest 3 cm above the floor (std::mt19937, seed 20240516).
-// Rock: rho 2600 kg/m³, E 10 GPa. Parameters as README "Choosing the parameters" tells a user:
+// Rock: rho 2600 kg/m³, E 10 GPa. Parameters as docs/validation.md "Choosing the parameters" tells a user:
 // kn = 2e9 Pa (E / 5), kt = 1e9 N/m, H = 0.5 m (the blocks' size), phi = 30° under the default
 // elastoplastic friction law, damping ratio zeta = 0.1, dt half the engine's critical estimate
 // (6.9e-5 s), no mass damping. (kn = E / 10 left 0.84-0.92 % at rest, too close to the bound
