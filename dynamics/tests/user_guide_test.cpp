@@ -184,7 +184,8 @@ BOOST_AUTO_TEST_CASE(the_first_scene_runs_and_writes_what_the_guide_lists) {
   const dyn::RunReport report = dyn::run_scene(scene, options);
   BOOST_TEST(report.status == "completed", report.error);
   BOOST_TEST(report.steps == dyn::step_count(scene));
-  for (const char* file : {"tracks.csv", "energies.csv", "summary.json", "frames.pvd", "final.svg"}) {
+  for (const char* file : {"tracks.csv", "energies.csv", "contacts.csv", "contacts.pvd", "summary.json",
+                           "frames.pvd", "final.svg"}) {
     BOOST_TEST(fs::exists(dir / file), file);
   }
   BOOST_TEST(report.frames >= 2u);
