@@ -200,6 +200,9 @@ int run_run(const RunArgs& options) {
     if (options.duration) document["time"]["duration"] = *options.duration;
   }
   dyn::Scene scene = dyn::parse_scene(document, options.scene);
+  for (const std::string& warning : dyn::stiffness_warnings(scene)) {
+    std::cerr << "rockcontact: " << options.scene << ": warning: " << warning << '\n';
+  }
   scene.params.threads = options.threads;
   ProgressBar bar;
   dyn::RunOptions run_options;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -922,6 +923,49 @@ nlohmann::ordered_json generated_blocks_json(const Scene& scene) {
 
 Scene read_scene_file(const std::filesystem::path& file) {
   return parse_scene(read_json_file(file), file.string());
+}
+
+std::vector<std::string> stiffness_warnings(const Scene& scene) {
+  double e_min = std::numeric_limits<double>::infinity(), e_max = 0.0;
+  for (const BlockSpec& b : scene.blocks) {
+    if (b.fixed) continue;
+    e_min = std::min(e_min, b.material.youngs_modulus);
+    e_max = std::max(e_max, b.material.youngs_modulus);
+  }
+  std::vector<std::string> warnings;
+  if (e_max == 0.0) return warnings;  // nothing moves
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.3g", x);
+    return std::string(buffer);
+  };
+  const auto check = [&](const std::string& where, double kn, const std::optional<FrictionLaw>& f) {
+    if (kn < 1e-3 * e_min) {
+      warnings.push_back(where + ".kn = " + text(kn) + " Pa is below a thousandth of the blocks' "
+                         "Young's modulus (" + text(e_min) + " Pa): the blocks will sink deep into "
+                         "each other; kn of E/10 to E is usual");
+    }
+    if (kn > 1e2 * e_max) {
+      warnings.push_back(where + ".kn = " + text(kn) + " Pa is above 100 times the blocks' Young's "
+                         "modulus (" + text(e_max) + " Pa): the critical time step shrinks with "
+                         "sqrt(kn) for no gain in accuracy; kn of E/10 to E is usual");
+    }
+    if (!f) return;
+    // A face-on-face contact of length H has the normal stiffness 2 kn H / H = 2 kn (N/m per m).
+    const double normal = 2.0 * kn;
+    if (f->kt < 1e-3 * normal || f->kt > 1e3 * normal) {
+      warnings.push_back(where + ".kt = " + text(f->kt) + " N/m is more than 1000 times off the "
+                         "normal stiffness of a face contact of length H, 2 kn = " + text(normal) +
+                         " N/m (kn in Pa, kt in N/m per metre of thickness); kt of kn to 2 kn is "
+                         "usual");
+    }
+  };
+  check("contact", scene.law.normal.kn, scene.law.friction);
+  for (std::size_t k = 0; k < scene.law.interfaces.size(); ++k) {
+    const Interface& face = scene.law.interfaces[k];
+    check("interfaces[" + std::to_string(k) + "]", face.kn, face.friction);
+  }
+  return warnings;
 }
 
 }  // namespace rockcontact::dynamics

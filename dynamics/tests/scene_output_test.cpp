@@ -466,7 +466,7 @@ BOOST_AUTO_TEST_CASE(contacts_csv_carries_a_static_column_s_weights) {
       BOOST_TEST(row[2] == upper[k]);
       BOOST_TEST(std::stod(row[5]) == 0.0, boost::test_tools::tolerance(1e-9));   // nx
       BOOST_TEST(std::stod(row[6]) == -1.0, boost::test_tools::tolerance(1e-9));  // ny: down on a
-      BOOST_TEST(std::stod(row[7]) / ((4.0 - k) * weight) == 1.0, boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(std::stod(row[7]) / ((4.0 - static_cast<double>(k)) * weight) == 1.0, boost::test_tools::tolerance(1e-9));
       BOOST_TEST(std::fabs(std::stod(row[8])) < 1e-9 * weight);
       BOOST_TEST(row[9] == "stick");
     }

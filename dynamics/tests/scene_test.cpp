@@ -651,3 +651,26 @@ BOOST_AUTO_TEST_CASE(region_joint_set_and_interface_errors) {
       },
       "interfaces[0].kt", "the scene's contact is frictionless");
 }
+
+// Stiffness warnings: the minimal scene (E = 2e8 Pa, kn = 5e7 Pa, frictionless) has none; kn
+// below E / 1000 or above 100 E, and kt 1000 times off 2 kn, each get one naming the field.
+BOOST_AUTO_TEST_CASE(stiffnesses_off_by_orders_of_magnitude_are_warned_about) {
+  json document = minimal_scene();
+  BOOST_TEST(dyn::stiffness_warnings(dyn::parse_scene(document, "minimal.json")).empty());
+  const auto warnings = [&](double kn, double kt) {
+    document["contact"]["kn"] = kn;
+    document["contact"]["kt"] = kt;
+    document["contact"]["friction_angle_deg"] = 30;
+    return dyn::stiffness_warnings(dyn::parse_scene(document, "minimal.json"));
+  };
+  BOOST_TEST(warnings(5e7, 1e8).empty());  // kt = 2 kn
+  auto w = warnings(1e5, 2e5);             // E / 2000
+  BOOST_TEST_REQUIRE(w.size() == 1u);
+  BOOST_TEST(w[0].find("contact.kn = 1e+05 Pa is below a thousandth") == 0u, w[0]);
+  w = warnings(3e10, 6e10);  // 150 E
+  BOOST_TEST_REQUIRE(w.size() == 1u);
+  BOOST_TEST(w[0].find("contact.kn = 3e+10 Pa is above 100 times") == 0u, w[0]);
+  w = warnings(5e7, 5e4);  // 2 kn / 2000
+  BOOST_TEST_REQUIRE(w.size() == 1u);
+  BOOST_TEST(w[0].find("contact.kt = 5e+04 N/m is more than 1000 times off") == 0u, w[0]);
+}

@@ -151,6 +151,12 @@ Scene parse_scene(const nlohmann::json& document, const std::string& source_name
 // they can be inspected, edited and pasted into a scene's "blocks".
 nlohmann::ordered_json generated_blocks_json(const Scene& scene);
 
+// Stiffnesses a scene accepts but a user most likely did not mean, one sentence each naming the
+// field: kn below E/1000 or above 100 E of the movable blocks (Young's modulus), kt more than
+// 1000 times off 2 kn, the normal stiffness of a face contact of length H (kn is in Pa, kt in
+// N/m per metre of thickness). `rockcontact run` prints them as warnings.
+std::vector<std::string> stiffness_warnings(const Scene& scene);
+
 // Reads and parses a file; InputError also for an unreadable file or malformed JSON.
 Scene read_scene_file(const std::filesystem::path& file);
 
