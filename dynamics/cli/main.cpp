@@ -258,7 +258,10 @@ void add_run(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<RunArgs>();
   CLI::App* sub = app.add_subcommand(
       "run",
-      "Run a scene (2D DDA with potential contact) and write its tracks, frames and summary");
+      "Run a scene (2D DDA with potential contact) and write its tracks, energies, contacts, "
+      "frames and summary. Units SI, forces per metre of thickness; contact kn in Pa, kt in N/m "
+      "(kt of kn to 2 kn; 2 kn is the normal stiffness of a face contact of length H). Every "
+      "field: docs/user-guide.md");
   sub->add_option("scene", options->scene, "Scene JSON (see dynamics/include/.../scene.hpp)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();
