@@ -262,7 +262,7 @@ void add_run(CLI::App& app, int& exit_status) {
       "frames and summary. Units SI, forces per metre of thickness; contact kn in Pa, kt in N/m "
       "(kt of kn to 2 kn; 2 kn is the normal stiffness of a face contact of length H). Every "
       "field: docs/user-guide.md");
-  sub->add_option("scene", options->scene, "Scene JSON (see dynamics/include/.../scene.hpp)")
+  sub->add_option("scene", options->scene, "Scene JSON (fields: docs/user-guide.md)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();
   sub->add_option("--checkpoint-every", options->checkpoint_every,
