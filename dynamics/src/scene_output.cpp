@@ -186,18 +186,29 @@ void write_pvd(const fs::path& file, std::span<const std::pair<double, std::stri
   pvd.commit();
 }
 
+bool all_finite(std::span<const kernel::Point2> polygon) {
+  return std::all_of(polygon.begin(), polygon.end(),
+                     [](const auto& p) { return std::isfinite(p.x) && std::isfinite(p.y); });
+}
+
+// The blocks at `time` filled, over the movable blocks at `start_time` as dashed outlines
+// (`start`: each block's vertices then, in the same order; empty: none), with both times
+// written in the corner.
 void write_svg(const fs::path& file, std::span<const BlockState> blocks,
+               std::span<const std::vector<kernel::Point2>> start, double start_time,
                std::span<const std::string> tracked, double time) {
   constexpr double width_px = 800.0;
   double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
   double xmax = -xmin, ymax = -xmin;
-  for (const BlockState& b : blocks) {
-    for (const kernel::Point2& p : b.vertices) {
+  const auto extend = [&](std::span<const kernel::Point2> polygon) {
+    for (const kernel::Point2& p : polygon) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
       xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
       ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
     }
-  }
+  };
+  for (const BlockState& b : blocks) extend(b.vertices);
+  for (const auto& polygon : start) extend(polygon);
   if (!(xmin < xmax)) xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0;  // nothing finite to show
   const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
   const double scale = width_px / (xmax - xmin + 2.0 * margin);
@@ -209,24 +220,33 @@ void write_svg(const fs::path& file, std::span<const BlockState> blocks,
       << "\">\n"
       << "  <title>t = " << number(time) << " s</title>\n"
       << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const auto points = [&](std::span<const kernel::Point2> polygon) {
+    std::string text;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      text += (i == 0 ? "" : " ") + pixel((polygon[i].x - xmin + margin) * scale) + ',' +
+              pixel((ymax + margin - polygon[i].y) * scale);
+    }
+    return text;
+  };
   for (const BlockState& b : blocks) {
-    const bool finite = std::all_of(b.vertices.begin(), b.vertices.end(), [](const auto& p) {
-      return std::isfinite(p.x) && std::isfinite(p.y);
-    });
-    if (!finite) continue;
+    if (!all_finite(b.vertices)) continue;
     const bool is_tracked = std::find(tracked.begin(), tracked.end(), b.id) != tracked.end();
     const char* style = b.fixed      ? "fill=\"#bdbdbd\" stroke=\"#616161\" stroke-width=\"1\""
                         : is_tracked ? "fill=\"#f28e2b\" stroke=\"#7f3b08\" stroke-width=\"2\""
                                      : "fill=\"#9ecae1\" stroke=\"#2171b5\" stroke-width=\"1\"";
-    out << "  <polygon " << style << " points=\"";
-    for (std::size_t i = 0; i < b.vertices.size(); ++i) {
-      const kernel::Point2& p = b.vertices[i];
-      out << (i == 0 ? "" : " ") << pixel((p.x - xmin + margin) * scale) << ','
-          << pixel((ymax + margin - p.y) * scale);
-    }
-    out << "\"><title>" << xml_escape(b.id) << "</title></polygon>\n";
+    out << "  <polygon " << style << " points=\"" << points(b.vertices) << "\"><title>"
+        << xml_escape(b.id) << "</title></polygon>\n";
   }
-  out << "</svg>\n";
+  for (std::size_t i = 0; i < start.size() && i < blocks.size(); ++i) {
+    if (blocks[i].fixed || !all_finite(start[i])) continue;
+    out << "  <polygon fill=\"none\" stroke=\"#525252\" stroke-width=\"1\" "
+           "stroke-dasharray=\"4 3\" points=\""
+        << points(start[i]) << "\"><title>" << xml_escape(blocks[i].id) << " at t = "
+        << number(start_time) << " s</title></polygon>\n";
+  }
+  out << "  <text x=\"8\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">t = "
+      << number(time) << " s; dashed: t = " << number(start_time) << " s</text>\n"
+      << "</svg>\n";
   output.commit();
 }
 
@@ -315,6 +335,9 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks,
   std::string index = std::to_string(frames_.size());
   index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
   write_vtp(dir_ / ("frame_" + index + ".vtp"), blocks);
+  if (frames_.empty()) {
+    for (const BlockState& b : blocks) start_.push_back(b.vertices);
+  }
   write_contact_vtp(dir_ / ("contacts_" + index + ".vtp"), rows);
   frames_.push_back({time, index});
 }
@@ -329,7 +352,8 @@ void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_jso
     for (const Frame& f : frames_) files.emplace_back(f.time, prefix + f.index + ".vtp");
     write_pvd(dir_ / collection, files);
   }
-  write_svg(dir_ / "final.svg", blocks, track_, frames_.empty() ? 0.0 : frames_.back().time);
+  write_svg(dir_ / "final.svg", blocks, start_, frames_.empty() ? 0.0 : frames_.front().time,
+            track_, frames_.empty() ? 0.0 : frames_.back().time);
   AtomicFile summary_file(dir_ / "summary.json");
   summary_file.stream() << summary.dump(2) << '\n';
   summary_file.commit();

@@ -227,7 +227,9 @@ BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
   for (const auto& [t, file] : frames) check_frame(dir / file, {4, 4, 3});
 
   const std::string svg = read_text(dir / "final.svg");
-  BOOST_TEST(count(svg, "<polygon") == 3u);
+  BOOST_TEST(count(svg, "<polygon") == 5u);  // three blocks, two movable ones' start outlines
+  BOOST_TEST(count(svg, "stroke-dasharray") == 2u);
+  BOOST_TEST(count(svg, "t = 0.2 s; dashed: t = 0 s") == 1u);
   BOOST_TEST(count(svg, "fill=\"#bdbdbd\"") == 1u);  // the fixed base, grey
   BOOST_TEST(count(svg, "fill=\"#f28e2b\"") == 2u);  // the tracked blocks, highlighted
   BOOST_TEST(count(svg, "<title>b&lt;c&gt;</title>") == 1u);
@@ -340,7 +342,7 @@ BOOST_AUTO_TEST_CASE(free_fall_rows_follow_the_analytic_parabola) {
     BOOST_TEST(std::abs(frames[i].first - times[i]) < 1e-15);
     check_frame(dir / frames[i].second, {4});
   }
-  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 1u);
+  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 2u);  // the block, and its start outline
 }
 
 // The contract scene for a few steps: every file, and a summary that matches the report.
@@ -371,7 +373,7 @@ BOOST_AUTO_TEST_CASE(two_block_run_writes_the_contract_outputs) {
   const auto frames = read_pvd(dir / "frames.pvd");
   BOOST_TEST(frames.size() == 5u);
   for (const auto& [t, file] : frames) check_frame(dir / file, {4, 4});
-  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 2u);
+  BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 3u);  // base, slider, the slider at the start
 
   const json summary = json::parse(read_text(dir / "summary.json"));
   BOOST_TEST(summary.at("status") == "completed");

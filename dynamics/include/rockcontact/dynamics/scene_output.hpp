@@ -29,7 +29,8 @@
 //                  the width of the last frame number (at least 4 digits).
 //   frames.pvd     the ParaView collection of the frames with their times (open this one).
 //   final.svg      the final state, y up: blocks filled, fixed ones grey, tracked ones orange,
-//                  each polygon titled with its block id.
+//                  each polygon titled with its block id; over it the movable blocks at the
+//                  first frame as dashed outlines, and both times in the corner.
 //   summary.json   status, steps, times, energy terms at the start and the end, wall seconds,
 //                  predicate calls and exact fallbacks, largest penetration (see run_summary).
 //
@@ -85,6 +86,7 @@ class SceneRecorder {
   std::optional<AtomicFile> energies_;  // likewise
   std::optional<AtomicFile> contacts_;  // likewise
   std::vector<Frame> frames_;
+  std::vector<std::vector<kernel::Point2>> start_;  // the blocks' vertices at the first frame
   // The contacts of the last recorded instant, by (cp, tp, cp_part, tp_part): ids, point and
   // normal, for the "open" row of a pair that has separated since.
   struct Open {
