@@ -17,6 +17,11 @@ install(TARGETS rockcontact_kernel rockcontact_contact rockcontact_dynamics rock
   EXPORT rockcontactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS rockcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The paper scenes that `rockcontact validate` and `report` run, where the installed executable
+# looks for them.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes/
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes
+  FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
 
 # contact/include also holds the C API beside its rockcontact/ tree: rockcontact.h and its
 # Fortran module rockcontact.f90, installed as source since .mod files are compiler-specific.

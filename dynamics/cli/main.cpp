@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 #include <iomanip>
 #include <iostream>
@@ -324,11 +325,23 @@ void add_cut(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_cut(*options); });
 }
 
+// The paper scenes: beside an installed executable (PREFIX/bin/rockcontact reads
+// PREFIX/share/rockcontact/scenes), else in the source tree this executable was built from.
+std::string default_scenes_dir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path() / ROCKCONTACT_SCENES_FROM_BINDIR;
+    if (std::filesystem::is_directory(installed, ec)) return installed.lexically_normal().string();
+  }
+  return ROCKCONTACT_SCENES_DIR;
+}
+
 // Options of the commands that go over the directory of paper scenes (validate, report).
 struct SceneSetArgs {
   bool quick = false;
   std::string out;
-  std::string scenes = ROCKCONTACT_SCENES_DIR;
+  std::string scenes = default_scenes_dir();
 };
 
 void add_scene_set_options(CLI::App* sub, SceneSetArgs& options) {
