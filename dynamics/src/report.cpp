@@ -264,11 +264,27 @@ std::string gnuplot_quoted(const std::string& text) {
   return out + "'";
 }
 
+// The line style of a setting, the same in every plot: a colour per policy, a point type per
+// demarcation, dashes for a kn other than the scene's.
+std::string line_style(kernel::PolicyKind policy, kernel::Demarcation mode, double kn_factor) {
+  const char* colour = policy == kernel::PolicyKind::float_     ? "#d62728"
+                       : policy == kernel::PolicyKind::filtered ? "#1f77b4"
+                                                                : "#2ca02c";
+  const int point = mode == kernel::Demarcation::paper ? 6 : 7;  // open / filled circle
+  const int dash = kn_factor == 1.0 ? 1 : kn_factor < 1.0 ? 2 : 3;
+  return std::string("lc rgb '") + colour + "' pt " + std::to_string(point) + " dt " +
+         std::to_string(dash);
+}
+
+// Below this largest error a scene's runs differ by rounding only: a plot would show noise.
+constexpr double round_off_error = 1e-12;
+
 // The gnuplot script of a scene's work-precision diagram, writing base.png and base.svg.
 std::string plot_script(const ReportScene& entry, const std::filesystem::path& base,
-                        std::span<const ReportRun> runs) {
+                        std::span<const ReportRun> runs, bool quick) {
   struct Curve {
     std::string title;
+    std::string style;
     std::vector<const ReportRun*> points;
     bool labelled;
   };
@@ -290,6 +306,7 @@ std::string plot_script(const ReportScene& entry, const std::filesystem::path& b
           continue;
         Curve& c = by_kn[r.kn_factor];
         c.title = setting(r) + (base_kn ? "" : " kn ×" + factor_text(r.kn_factor));
+        c.style = line_style(policy, mode, r.kn_factor);
         c.labelled = policy == kernel::PolicyKind::filtered && mode == kernel::Demarcation::exact;
         c.points.push_back(&r);
       }
@@ -298,9 +315,11 @@ std::string plot_script(const ReportScene& entry, const std::filesystem::path& b
   }
   std::ostringstream gp;
   gp << "# Work-precision diagram of " << entry.name << ", written by `rockcontact report`.\n"
-     << "set logscale xy\nset grid\nset key outside right top\n"
+     << "set logscale xy\nset grid\nset key outside below horizontal maxcols 3 font ',9'\n"
      << "set format xy '%g'\n"
-     << "set title " << gnuplot_quoted(entry.name + ", error against " + entry.reference) << '\n'
+     << "set title " << gnuplot_quoted(entry.name + (quick ? " (--quick: short runs)" : "")) << '\n'
+     << "set label 1 " << gnuplot_quoted("error against " + entry.reference)
+     << " at graph 0.5, graph 1.02 center font ',9'\n"
      << "set xlabel 'wall time of the run (s)'\nset ylabel 'relative error'\n";
   for (std::size_t i = 0; i < curves.size(); ++i) {
     gp << "$c" << i << " << EOD\n";
@@ -313,17 +332,17 @@ std::string plot_script(const ReportScene& entry, const std::filesystem::path& b
   std::ostringstream plot;
   plot << "plot ";
   for (std::size_t i = 0; i < curves.size(); ++i) {
-    plot << (i ? ", \\\n     " : "") << "$c" << i << " using 1:2 with linespoints title "
-         << gnuplot_quoted(curves[i].title);
+    plot << (i ? ", \\\n     " : "") << "$c" << i << " using 1:2 with linespoints "
+         << curves[i].style << " title " << gnuplot_quoted(curves[i].title);
     if (curves[i].labelled) {
       plot << ", $c" << i << " using 1:2:3 with labels offset 1,0.6 font ',8' notitle";
     }
   }
   if (curves.empty()) plot << "1/0 title 'no completed run'";
   const std::string png = base.string() + ".png", svg = base.string() + ".svg";
-  gp << "set terminal pngcairo size 1000,620\nset output " << gnuplot_quoted(png) << '\n'
+  gp << "set terminal pngcairo size 900,640\nset output " << gnuplot_quoted(png) << '\n'
      << plot.str() << "\nset output\n"
-     << "set terminal svg size 1000,620 dynamic\nset output " << gnuplot_quoted(svg) << '\n'
+     << "set terminal svg size 900,640 dynamic\nset output " << gnuplot_quoted(svg) << '\n'
      << plot.str() << "\nset output\n";
   return gp.str();
 }
@@ -342,13 +361,22 @@ bool run_program(const std::string& program, const std::filesystem::path& script
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+// The largest error of a scene's completed runs (0 when none completed).
+double largest_error(const std::string& scene, std::span<const ReportRun> runs) {
+  double largest = 0.0;
+  for (const ReportRun& r : runs) {
+    if (r.scene == scene && r.status == "completed") largest = std::max(largest, r.error);
+  }
+  return largest;
+}
+
 bool write_plot(const ReportOptions& options, const ReportScene& entry,
                 std::span<const ReportRun> runs) {
   const std::filesystem::path base = options.out_dir / entry.slug;
   std::filesystem::path script = base;
   script += ".gp";
   AtomicFile file(script);
-  file.stream() << plot_script(entry, base, runs);
+  file.stream() << plot_script(entry, base, runs, options.quick);
   file.commit();
   if (options.gnuplot.empty() || !run_program(options.gnuplot, script)) return false;
   for (const char* ext : {".png", ".svg"}) {
@@ -447,7 +475,11 @@ void write_index(const ReportOptions& options, const std::vector<ReportScene>& s
        << "Scene `" << e.file << "`, " << format(options.quick ? e.quick_duration : e.duration)
        << " s simulated; reference (analytic): " << e.reference << ".\n\n"
        << summary.headlines[i] << "\n\n";
-    if (plotted[i]) {
+    const double largest = largest_error(e.name, summary.runs);
+    if (largest < round_off_error) {
+      md << "No plot: every run's error is rounding (the largest " << format(largest)
+         << "), so the curves would show noise only.\n";
+    } else if (plotted[i]) {
       md << "![" << e.name << "](" << e.slug << ".png) ([SVG](" << e.slug << ".svg))\n";
     } else {
       md << "Plot missing: gnuplot did not run (script in `" << e.slug << ".gp`).\n";
@@ -482,6 +514,11 @@ ReportSummary run_report(const ReportOptions& options) {
   const std::vector<ReportScene> scenes = report_scenes();
   const Sweep s = sweep(options.quick);
   ReportSummary summary;
+  if (options.on_start) {
+    const std::size_t settings = 3 * 2;  // the policies and demarcations of the loops below
+    options.on_start(scenes.size() * settings * s.kn_factors.size() * s.dt_factors.size(),
+                     scenes.size());
+  }
   for (const ReportScene& entry : scenes) {
     if (options.on_scene) options.on_scene(entry.name);
     const Scene base = read_scene_file(options.scenes_dir / entry.file);
@@ -500,8 +537,11 @@ ReportSummary run_report(const ReportOptions& options) {
   for (const ReportScene& entry : scenes)
     summary.headlines.push_back(headline(entry.name, summary.runs));
   std::vector<bool> plotted;
-  for (const ReportScene& entry : scenes)
-    plotted.push_back(write_plot(options, entry, summary.runs));
+  for (const ReportScene& entry : scenes) {
+    // A scene whose errors are all rounding gets a sentence instead (write_index).
+    plotted.push_back(largest_error(entry.name, summary.runs) < round_off_error ||
+                      write_plot(options, entry, summary.runs));
+  }
   summary.plots = std::all_of(plotted.begin(), plotted.end(), [](bool p) { return p; });
   write_csv(options.out_dir / "runs.csv", summary.runs);
   summary.seconds = std::chrono::duration<double>(clock::now() - start).count();

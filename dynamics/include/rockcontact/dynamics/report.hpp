@@ -55,6 +55,8 @@ struct ReportOptions {
   std::string gnuplot = "gnuplot";   // the plotting program, looked up in PATH; empty: no plots
   // Called with each scene's name before its runs start (progress on a terminal).
   std::function<void(const std::string&)> on_scene;
+  // Called once before the first run with the number of runs and of scenes.
+  std::function<void(std::size_t, std::size_t)> on_start;
 };
 
 struct ReportRun {
