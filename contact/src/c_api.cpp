@@ -17,6 +17,12 @@
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/version.hpp"
 
+// The layouts rockcontact.h promises (no implicit padding; Fortran's bind(C) types match them).
+static_assert(sizeof(rockcontact_pair_result) == 80);
+static_assert(sizeof(rockcontact_friction_params) == 32);
+static_assert(sizeof(rockcontact_friction_state) == 56);
+static_assert(sizeof(rockcontact_friction_result) == 32);
+
 struct rockcontact_evaluator {
   rockcontact::PairEvaluator pairs;
 };
