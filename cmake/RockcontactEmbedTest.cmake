@@ -2,7 +2,8 @@
 # RockcontactInstallTests.cmake). Any failing step fails the test.
 #   install    the build tree into PREFIX, from scratch, so files the tree no longer has do not
 #              survive from an earlier run; the package must not name the source or build tree
-#   cmake      examples/embed as its own project, finding rockcontact in PREFIX only; runs it
+#   cmake      examples/embed as its own project, finding rockcontact in PREFIX only; runs its
+#              hosts
 #   pkgconfig  examples/embed/dem_host.cpp with `pkg-config --static --cflags --libs`; runs it
 cmake_minimum_required(VERSION 3.25)
 set(embed ${SOURCE_DIR}/examples/embed)
@@ -39,6 +40,7 @@ elseif(MODE STREQUAL "cmake")
   endif()
   execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK} COMMAND_ERROR_IS_FATAL ANY)
   execute_process(COMMAND ${WORK}/dem_host COMMAND_ERROR_IS_FATAL ANY)
+  execute_process(COMMAND ${WORK}/sliding_host COMMAND_ERROR_IS_FATAL ANY)
 
 elseif(MODE STREQUAL "pkgconfig")
   file(REMOVE_RECURSE ${WORK})

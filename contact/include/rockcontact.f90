@@ -13,6 +13,12 @@
 !   status = rockcontact_evaluate_pair(contact, a_xy, n_a, a_pose, b_xy, n_b, b_pose, r)
 !   call rockcontact_evaluator_destroy(contact)
 !
+! Friction: keep one type(rockcontact_friction_state) per contacting pair (its default value,
+! rockcontact_friction_state(), is a new contact) and after each evaluate_pair of that pair call
+!   status = rockcontact_evaluate_friction(friction_params, r, increment, state, t)
+! with increment(2) the relative displacement of the contact point since the previous call (m);
+! t%force is the tangential force on a. A pair that separates resets its state.
+!
 ! a_xy(2 * n_a) holds x1, y1, x2, y2, ... (local frame, m, counter-clockwise); a_pose(3) holds
 ! x, y (m) and theta (rad). Status codes and the result's `status` are the C enumerators.
 module rockcontact
@@ -32,6 +38,8 @@ module rockcontact
                                            ROCKCONTACT_DEMARCATION_PAPER = 1
   integer(c_int32_t), parameter, public :: ROCKCONTACT_SEPARATE = 0, ROCKCONTACT_TOUCH = 1, &
                                            ROCKCONTACT_OVERLAP = 2
+  integer(c_int32_t), parameter, public :: ROCKCONTACT_FRICTION_ELASTOPLASTIC = 0, &
+                                           ROCKCONTACT_FRICTION_PAPER = 1
 
   type, bind(C), public :: rockcontact_params
     real(c_double) :: kn                   ! Pa, > 0
@@ -50,12 +58,38 @@ module rockcontact
     real(c_double) :: penetration      ! minimum translation distance, m
     integer(c_int64_t) :: predicates   ! predicate calls spent on the pair
     integer(c_int64_t) :: fallbacks    ! of which re-evaluated exactly
+    real(c_double) :: length           ! contact length L (half the IP perimeter), m
+  end type
+
+  type, bind(C), public :: rockcontact_friction_params
+    real(c_double) :: kt                  ! N/m per metre of thickness, > 0
+    real(c_double) :: friction_angle_deg  ! phi, degrees, in [0, 90)
+    real(c_double) :: cohesion            ! c, Pa, >= 0
+    integer(c_int32_t) :: model           ! ROCKCONTACT_FRICTION_*
+    integer(c_int32_t) :: reserved        ! explicit padding; ignored
+  end type
+
+  ! Opaque but copyable: store one per contacting pair, never edit its components.
+  type, bind(C), public :: rockcontact_friction_state
+    real(c_double) :: displacement(2) = 0.0_c_double
+    real(c_double) :: force(2) = 0.0_c_double
+    real(c_double) :: normal(2) = 0.0_c_double
+    integer(c_int32_t) :: sliding = 0
+    integer(c_int32_t) :: in_contact = 0
+  end type
+
+  type, bind(C), public :: rockcontact_friction_result
+    real(c_double) :: force(2)     ! tangential force on a, N/m, at the contact point
+    real(c_double) :: dissipated   ! energy the slip dissipated since the previous call, J/m
+    integer(c_int32_t) :: sliding  ! 1 when |force| is at the Coulomb limit
+    integer(c_int32_t) :: reserved ! explicit padding
   end type
 
   public :: rockcontact_default_params, rockcontact_evaluator_create, &
             rockcontact_evaluator_destroy, rockcontact_evaluate_pair, &
             rockcontact_intersection_polygon, rockcontact_last_error, &
-            rockcontact_version
+            rockcontact_version, rockcontact_default_friction_params, &
+            rockcontact_evaluate_friction
 
   interface
     subroutine rockcontact_default_params(params) bind(C, name="rockcontact_default_params")
@@ -93,6 +127,24 @@ module rockcontact
       real(c_double), intent(out) :: xy(*)
       integer(c_int32_t), value :: capacity
       integer(c_int32_t), intent(out) :: count
+      integer(c_int) :: code
+    end function
+
+    subroutine rockcontact_default_friction_params(params) &
+        bind(C, name="rockcontact_default_friction_params")
+      import :: rockcontact_friction_params
+      type(rockcontact_friction_params), intent(out) :: params
+    end subroutine
+
+    function rockcontact_evaluate_friction(params, contact, increment, state, result) &
+        result(code) bind(C, name="rockcontact_evaluate_friction")
+      import :: rockcontact_friction_params, rockcontact_pair_result, rockcontact_friction_state, &
+                rockcontact_friction_result, c_int, c_double
+      type(rockcontact_friction_params), intent(in) :: params
+      type(rockcontact_pair_result), intent(in) :: contact
+      real(c_double), intent(in) :: increment(2)
+      type(rockcontact_friction_state), intent(inout) :: state
+      type(rockcontact_friction_result), intent(out) :: result
       integer(c_int) :: code
     end function
 

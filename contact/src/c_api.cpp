@@ -1,4 +1,5 @@
-// The C API (rockcontact.h) over PairEvaluator (pair_contact.hpp). Every entry point catches
+// The C API (rockcontact.h) over PairEvaluator (pair_contact.hpp) and evaluate_pair_friction
+// (pair_friction.hpp). Every entry point catches
 // every exception and turns it into an error code plus a per-thread message: nothing unwinds
 // into C or Fortran frames.
 
@@ -12,8 +13,15 @@
 #include <string>
 
 #include "rockcontact/contact/pair_contact.hpp"
+#include "rockcontact/contact/pair_friction.hpp"
 #include "rockcontact/kernel/convex_polygon.hpp"
 #include "rockcontact/version.hpp"
+
+// The layouts rockcontact.h promises (no implicit padding; Fortran's bind(C) types match them).
+static_assert(sizeof(rockcontact_pair_result) == 80);
+static_assert(sizeof(rockcontact_friction_params) == 32);
+static_assert(sizeof(rockcontact_friction_state) == 56);
+static_assert(sizeof(rockcontact_friction_result) == 32);
 
 struct rockcontact_evaluator {
   rockcontact::PairEvaluator pairs;
@@ -79,6 +87,54 @@ std::span<const double> polygon(const char* name, const double* xy, int32_t coun
   return {xy, 2 * static_cast<std::size_t>(count)};
 }
 
+rockcontact::PairFrictionParams to_cpp(const rockcontact_friction_params& p) {
+  rockcontact::PairFrictionParams out;
+  out.kt = p.kt;
+  out.friction_angle_deg = p.friction_angle_deg;
+  out.cohesion = p.cohesion;
+  switch (p.model) {
+    case ROCKCONTACT_FRICTION_ELASTOPLASTIC:
+      out.model = rockcontact::contact::FrictionModel::elastoplastic;
+      break;
+    case ROCKCONTACT_FRICTION_PAPER: out.model = rockcontact::contact::FrictionModel::paper; break;
+    default:
+      throw std::invalid_argument("friction_params.model: expected ROCKCONTACT_FRICTION_ELASTOPLASTIC "
+                                  "(0) or _PAPER (1), got " + std::to_string(p.model));
+  }
+  return out;
+}
+
+// The fields of a pair result that friction reads.
+rockcontact::PairContact to_cpp(const rockcontact_pair_result& r) {
+  rockcontact::PairContact out;
+  out.has_point = r.has_point != 0;
+  out.force[0] = r.force[0];
+  out.force[1] = r.force[1];
+  out.length = r.length;
+  return out;
+}
+
+rockcontact::PairFrictionState to_cpp(const rockcontact_friction_state& s) {
+  rockcontact::PairFrictionState out;
+  out.record.displacement = {s.displacement[0], s.displacement[1]};
+  out.record.force = {s.force[0], s.force[1]};
+  out.record.normal = {s.normal[0], s.normal[1]};
+  out.record.sliding = s.sliding != 0;
+  out.in_contact = s.in_contact != 0;
+  return out;
+}
+
+void to_c(const rockcontact::PairFrictionState& s, rockcontact_friction_state& out) {
+  out.displacement[0] = s.record.displacement.x;
+  out.displacement[1] = s.record.displacement.y;
+  out.force[0] = s.record.force.x;
+  out.force[1] = s.record.force.y;
+  out.normal[0] = s.record.normal.x;
+  out.normal[1] = s.record.normal.y;
+  out.sliding = s.record.sliding ? 1 : 0;
+  out.in_contact = s.in_contact ? 1 : 0;
+}
+
 rockcontact::Pose2 pose(const double* p) {
   return p == nullptr ? rockcontact::Pose2{} : rockcontact::Pose2{p[0], p[1], p[2]};
 }
@@ -137,6 +193,7 @@ rockcontact_error rockcontact_evaluate_pair(rockcontact_evaluator* evaluator, co
     result->penetration = c.penetration;
     result->predicates = static_cast<int64_t>(c.predicates);
     result->fallbacks = static_cast<int64_t>(c.fallbacks);
+    result->length = c.length;
     return ROCKCONTACT_OK;
   } catch (...) {
     return from_exception();
@@ -161,6 +218,42 @@ rockcontact_error rockcontact_intersection_polygon(const rockcontact_evaluator* 
     xy[2 * k + 1] = ip[k].y;
   }
   return ROCKCONTACT_OK;
+}
+
+void rockcontact_default_friction_params(rockcontact_friction_params* params) {
+  if (params == nullptr) return;
+  const rockcontact::PairFrictionParams d = rockcontact::default_pair_friction_params();
+  params->kt = d.kt;
+  params->friction_angle_deg = d.friction_angle_deg;
+  params->cohesion = d.cohesion;
+  params->model = ROCKCONTACT_FRICTION_ELASTOPLASTIC;
+  params->reserved = 0;
+}
+
+rockcontact_error rockcontact_evaluate_friction(const rockcontact_friction_params* params,
+                                                const rockcontact_pair_result* contact,
+                                                const double* increment,
+                                                rockcontact_friction_state* state,
+                                                rockcontact_friction_result* result) {
+  last_error.clear();
+  if (params == nullptr || contact == nullptr || increment == nullptr || state == nullptr ||
+      result == nullptr) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_evaluate_friction: null argument");
+  }
+  try {
+    rockcontact::PairFrictionState next = to_cpp(*state);
+    const rockcontact::PairFriction f = rockcontact::evaluate_pair_friction(
+        next, to_cpp(*contact), {increment[0], increment[1]}, to_cpp(*params));
+    to_c(next, *state);
+    result->force[0] = f.force[0];
+    result->force[1] = f.force[1];
+    result->dissipated = f.dissipated;
+    result->sliding = f.sliding ? 1 : 0;
+    result->reserved = 0;
+    return ROCKCONTACT_OK;
+  } catch (...) {
+    return from_exception();
+  }
 }
 
 const char* rockcontact_last_error(void) { return last_error.c_str(); }

@@ -52,6 +52,15 @@ void place(const char* name, std::span<const double> xy, const Pose2& pose,
   }
 }
 
+double perimeter(std::span<const kernel::Point2> polygon) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const kernel::Point2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
+    sum += std::hypot(q.x - p.x, q.y - p.y);
+  }
+  return sum;
+}
+
 }  // namespace
 
 PairContactParams default_pair_contact_params() { return {}; }
@@ -73,6 +82,7 @@ struct PairEvaluator::Impl {
     out.area = result.area;
     if (result.status == kernel::Overlap::overlap) {
       out.penetration = kernel::compute_penetration_depth<Policy>(a, b);
+      out.length = 0.5 * perimeter(result.ip);
     }
   }
 

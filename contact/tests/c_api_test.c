@@ -3,7 +3,12 @@
  * TP = [1.25,4]x[0.25,2]: f = kn/H (-1/2, -7/16), contact point (369/226, 557/904), IP area
  * 9/16, penetration 0.75, all to 1e-12 relative: the inputs are dyadic, so only the
  * integration rounds; the IP's corners exactly), the identity pose, and every error path: the code, and a message that
- * names what was wrong. Exit status 0 when every check passes. */
+ * names what was wrong. Then friction (rockcontact_evaluate_friction) on a 1 m square pressed
+ * d = 2^-10 m into the top of a 4 m x 1 m base, whose normal force kn (2 d - d²) / H and contact
+ * length 1 + d are closed forms (pair_friction_test.cpp), pushed along the face by 2^-13 m
+ * steps: stick at -kt δ, slide at F tan 30°, dissipate limit × push, reset on separation; to
+ * 1e-10 relative (a handful of roundings on the 1e-12 force, as in pair_friction_test.cpp).
+ * Exit status 0 when every check passes. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -24,6 +29,89 @@ static int close_to(double actual, double expected) {
 }
 
 static int message_has(const char* text) { return strstr(rockcontact_last_error(), text) != NULL; }
+
+static int near(double actual, double expected, double scale) {
+  return fabs(actual - expected) <= 1e-10 * scale;
+}
+
+/* Friction through the C API; see the file comment. */
+static void check_friction(void) {
+  const double kn = 1.0e7, d = 1.0 / 1024.0, push = 1.0 / 8192.0;
+  const double block[] = {-0.5, -0.5, 0.5, -0.5, 0.5, 0.5, -0.5, 0.5};
+  const double base[] = {-2.0, -0.5, 2.0, -0.5, 2.0, 0.5, -2.0, 0.5};
+  const double fn = kn * (2.0 * d - d * d), limit = fn * tan(atan(1.0) * 4.0 / 6.0);
+  const double step[] = {push, 0.0}, bad_step[] = {NAN, 0.0};
+  rockcontact_params params;
+  rockcontact_friction_params friction;
+  rockcontact_friction_state state = {0};
+  rockcontact_friction_result t;
+  rockcontact_pair_result r;
+  rockcontact_evaluator* contact = NULL;
+  int k;
+
+  rockcontact_default_params(&params);
+  params.kn = kn;
+  check(rockcontact_evaluator_create(&params, &contact) == ROCKCONTACT_OK, "friction: create");
+  rockcontact_default_friction_params(&friction);
+  check(friction.kt == 1.0e7 && friction.friction_angle_deg == 0.0 && friction.cohesion == 0.0 &&
+            friction.model == ROCKCONTACT_FRICTION_ELASTOPLASTIC,
+        "default friction parameters");
+  friction.friction_angle_deg = 30.0;
+  for (k = 0; k <= 11; ++k) {
+    const double pose[] = {k * push, 1.0 - d, 0.0};
+    check(rockcontact_evaluate_pair(contact, block, 4, pose, base, 4, NULL, &r) == ROCKCONTACT_OK &&
+              r.has_point == 1 && near(r.force[1], fn, fn) && near(r.length, 1.0 + d, 1.0),
+          "friction: pressed block, F = kn (2 d - d²) / H, L = 1 + d");
+    check(rockcontact_evaluate_friction(&friction, &r, step, &state, &t) == ROCKCONTACT_OK,
+          "friction: evaluate");
+    if (k == 0) check(t.force[0] == 0.0 && t.sliding == 0, "friction: a new contact, unstretched");
+    if (k == 1) {
+      check(near(t.force[0], -friction.kt * push, limit) && t.sliding == 0 && t.dissipated == 0.0,
+            "friction: stick at -kt push");
+    }
+    if (k == 11) {
+      check(near(t.force[0], -limit, limit) && near(t.force[1], 0.0, limit) && t.sliding == 1 &&
+                near(t.dissipated, limit * push, limit * push),
+            "friction: slide at F tan 30, dissipating limit x push");
+    }
+  }
+
+  /* Bad input: the code, the field in the message, nothing written. */
+  {
+    const rockcontact_friction_state kept = state;
+    rockcontact_friction_params bad = friction;
+    bad.kt = -1.0;
+    check(rockcontact_evaluate_friction(&bad, &r, step, &state, &t) ==
+                  ROCKCONTACT_ERROR_INVALID_ARGUMENT && message_has("kt must be finite and > 0"),
+          "friction: negative kt refused");
+    bad = friction;
+    bad.model = 5;
+    check(rockcontact_evaluate_friction(&bad, &r, step, &state, &t) ==
+                  ROCKCONTACT_ERROR_INVALID_ARGUMENT && message_has("friction_params.model"),
+          "friction: unknown model refused");
+    check(rockcontact_evaluate_friction(&friction, &r, bad_step, &state, &t) ==
+                  ROCKCONTACT_ERROR_INVALID_ARGUMENT && message_has("increment"),
+          "friction: non-finite increment refused");
+    check(rockcontact_evaluate_friction(&friction, &r, step, NULL, &t) ==
+              ROCKCONTACT_ERROR_INVALID_ARGUMENT,
+          "friction: null state refused");
+    check(memcmp(&kept, &state, sizeof state) == 0, "friction: a refusal leaves the state");
+  }
+
+  /* Separation: no force, and the state is zero again. */
+  {
+    const double lifted[] = {0.0, 1.0 + d, 0.0};
+    const rockcontact_friction_state zero = {0};
+    check(rockcontact_evaluate_pair(contact, block, 4, lifted, base, 4, NULL, &r) == ROCKCONTACT_OK &&
+              r.has_point == 0,
+          "friction: lifted block separates");
+    check(rockcontact_evaluate_friction(&friction, &r, step, &state, &t) == ROCKCONTACT_OK &&
+              t.force[0] == 0.0 && t.force[1] == 0.0 && t.sliding == 0 &&
+              memcmp(&zero, &state, sizeof state) == 0,
+          "friction: separation resets the state");
+  }
+  rockcontact_evaluator_destroy(contact);
+}
 
 int main(void) {
   const double kn = 2.0e7, H = 0.5, scale = kn / H;
@@ -130,6 +218,8 @@ int main(void) {
         "unknown policy refused");
   check(strcmp(rockcontact_error_string(ROCKCONTACT_ERROR_INVALID_POLYGON), "invalid polygon") == 0,
         "error string");
+
+  check_friction();
 
   if (failures == 0) printf("c_api_test: all checks passed\n");
   return failures == 0 ? 0 : 1;

@@ -2,7 +2,12 @@
 ! "corner" of potential_contact_test.cpp (CP = [0,2]x[0,1], TP = [1.25,4]x[0.25,2]: force
 ! kn/H (-1/2, -7/16), contact point (369/226, 557/904), IP area 9/16, penetration 0.75; 1e-12
 ! relative, since the dyadic inputs leave only the integration's roundings) and its intersection
-! polygon under every policy, and a refused clockwise polygon with its message. Stops with a non-zero code on a failure.
+! polygon under every policy, and a refused clockwise polygon with its message. Then friction:
+! a 1 m square pressed d = 2^-10 m into a 4 m x 1 m base (normal force kn (2 d - d^2) / H, contact
+! length 1 + d: closed forms, see pair_friction_test.cpp) pushed along the face by 2^-13 m steps:
+! stick at -kt push, slide at F tan 30 deg dissipating limit x push, reset on separation, a
+! refused kt; to 1e-10 relative (a handful of roundings on the 1e-12 force). Stops with a
+! non-zero code on a failure.
 program c_api_test
   use, intrinsic :: iso_c_binding, only: c_ptr, c_double, c_int, c_int32_t
   use rockcontact
@@ -62,6 +67,8 @@ program c_api_test
     call rockcontact_evaluator_destroy(contact)
   end do
 
+  call check_friction()
+
   if (failures > 0) error stop 1
   print '(a)', 'c_api_test (Fortran): all checks passed'
 
@@ -70,6 +77,74 @@ contains
   logical function close_to(actual, expected)
     real(c_double), intent(in) :: actual, expected
     close_to = abs(actual - expected) <= 1.0e-12_c_double * abs(expected)
+  end function
+
+  subroutine check_friction()
+    real(c_double), parameter :: d = 1.0_c_double / 1024.0_c_double
+    real(c_double), parameter :: push = 1.0_c_double / 8192.0_c_double
+    real(c_double), parameter :: block(8) = [-0.5_c_double, -0.5_c_double, 0.5_c_double, &
+                                             -0.5_c_double, 0.5_c_double, 0.5_c_double, &
+                                             -0.5_c_double, 0.5_c_double]
+    real(c_double), parameter :: base(8) = [-2.0_c_double, -0.5_c_double, 2.0_c_double, &
+                                            -0.5_c_double, 2.0_c_double, 0.5_c_double, &
+                                            -2.0_c_double, 0.5_c_double]
+    real(c_double), parameter :: base_pose(3) = 0.0_c_double, step(2) = [push, 0.0_c_double]
+    type(rockcontact_params) :: params
+    type(rockcontact_friction_params) :: friction, bad
+    type(rockcontact_friction_state) :: state
+    type(rockcontact_friction_result) :: t
+    type(rockcontact_pair_result) :: r
+    type(c_ptr) :: contact
+    real(c_double) :: fn, limit, pose(3)
+    integer(c_int) :: code
+    integer :: k
+
+    fn = 1.0e7_c_double * (2.0_c_double * d - d * d)
+    limit = fn * tan(acos(-1.0_c_double) / 6.0_c_double)
+    call rockcontact_default_params(params)
+    params%kn = 1.0e7_c_double
+    call check(rockcontact_evaluator_create(params, contact) == ROCKCONTACT_OK, 'friction: create')
+    call rockcontact_default_friction_params(friction)
+    call check(friction%kt == 1.0e7_c_double .and. friction%model == ROCKCONTACT_FRICTION_ELASTOPLASTIC, &
+               'default friction parameters')
+    friction%friction_angle_deg = 30.0_c_double
+    ! One call per statement: Fortran may evaluate the operands of .and. in any order, so a
+    ! result must not be read in the expression that produces it.
+    do k = 0, 11
+      pose = [k * push, 1.0_c_double - d, 0.0_c_double]
+      code = rockcontact_evaluate_pair(contact, block, 4_c_int32_t, pose, base, 4_c_int32_t, &
+                                       base_pose, r)
+      call check(code == ROCKCONTACT_OK .and. r%has_point == 1, 'friction: pressed block in contact')
+      call check(near(r%force(2), fn, fn) .and. near(r%length, 1.0_c_double + d, 1.0_c_double), &
+                 'friction: F = kn (2 d - d^2) / H, L = 1 + d')
+      call check(rockcontact_evaluate_friction(friction, r, step, state, t) == ROCKCONTACT_OK, &
+                 'friction: evaluate')
+      if (k == 1) call check(near(t%force(1), -friction%kt * push, limit) .and. t%sliding == 0, &
+                             'friction: stick at -kt push')
+      if (k == 11) call check(near(t%force(1), -limit, limit) .and. t%sliding == 1 .and. &
+                              near(t%dissipated, limit * push, limit * push), &
+                              'friction: slide at F tan 30, dissipating limit x push')
+    end do
+    bad = friction
+    bad%kt = -1.0_c_double
+    code = rockcontact_evaluate_friction(bad, r, step, state, t)
+    call check(code == ROCKCONTACT_ERROR_INVALID_ARGUMENT .and. &
+               index(rockcontact_last_error(), 'kt must be finite and > 0') > 0, &
+               'friction: negative kt refused')
+    call check(state%sliding == 1 .and. state%in_contact == 1, 'friction: a refusal leaves the state')
+    pose = [0.0_c_double, 1.0_c_double + d, 0.0_c_double]
+    code = rockcontact_evaluate_pair(contact, block, 4_c_int32_t, pose, base, 4_c_int32_t, &
+                                     base_pose, r)
+    call check(code == ROCKCONTACT_OK .and. r%has_point == 0, 'friction: lifted block separates')
+    code = rockcontact_evaluate_friction(friction, r, step, state, t)
+    call check(code == ROCKCONTACT_OK .and. all(t%force == 0.0_c_double) .and. state%in_contact == 0 .and. &
+               all(state%displacement == 0.0_c_double), 'friction: separation resets the state')
+    call rockcontact_evaluator_destroy(contact)
+  end subroutine
+
+  logical function near(actual, expected, scale)
+    real(c_double), intent(in) :: actual, expected, scale
+    near = abs(actual - expected) <= 1.0e-10_c_double * scale
   end function
 
   subroutine check(ok, what)

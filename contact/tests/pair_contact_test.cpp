@@ -6,7 +6,8 @@
 // The host-facing pair API (pair_contact.hpp) against independent references:
 //   (a) the closed form "corner" of potential_contact_test.cpp (CP = [0,2]×[0,1],
 //       TP = [1.25,4]×[0.25,2]: f = kn/H (-1/2, -7/16), pg = (369/226, 557/904), area 9/16),
-//       given as local rectangles with poses, then with both poses turned by an angle;
+//       given as local rectangles with poses, then with both poses turned by an angle; the
+//       contact length is half the IP's perimeter, 1.5;
 //   (b) the penetration depth by hand (boxes: the smaller axis overlap) and against the
 //       entrance block's stored boundary distance, a separate computation;
 //   (c) the independent contact2d reference data, through plain arrays;
@@ -105,6 +106,8 @@ BOOST_AUTO_TEST_CASE(closed_form_through_poses) {
     BOOST_TEST(c.point[0] == 369.0 / 226.0, boost::test_tools::tolerance(1e-12));
     BOOST_TEST(c.point[1] == 557.0 / 904.0, boost::test_tools::tolerance(1e-12));
     BOOST_TEST(c.penetration == 0.75, boost::test_tools::tolerance(1e-12));
+    // The IP [1.25, 2] × [0.25, 1] has perimeter 3: L = 1.5.
+    BOOST_TEST(c.length == 1.5, boost::test_tools::tolerance(1e-12));
     BOOST_TEST(contact.intersection_polygon().size() == 4u);
   }
 }
@@ -130,10 +133,11 @@ BOOST_AUTO_TEST_CASE(rotation_of_both_poses) {
                1e-12 * 4.0);
     BOOST_TEST(c.area == 9.0 / 16.0, boost::test_tools::tolerance(1e-12));
     BOOST_TEST(c.penetration == 0.75, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(c.length == 1.5, boost::test_tools::tolerance(1e-12));
   }
 }
 
-// (b) Separate and touching blocks: no force, no point, zero area and penetration.
+// (b) Separate and touching blocks: no force, no point, zero area, penetration and length.
 BOOST_AUTO_TEST_CASE(separate_and_touch) {
   PairEvaluator contact(params(PolicyKind::filtered));
   const std::vector<double> unit = rectangle(1.0, 1.0);
@@ -147,6 +151,7 @@ BOOST_AUTO_TEST_CASE(separate_and_touch) {
     BOOST_TEST(c.force[1] == 0.0);
     BOOST_TEST(c.area == 0.0);
     BOOST_TEST(c.penetration == 0.0);
+    BOOST_TEST(c.length == 0.0);
   }
   BOOST_TEST(contact.intersection_polygon().empty());
 }

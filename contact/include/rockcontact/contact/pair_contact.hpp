@@ -7,6 +7,8 @@
 //     const rockcontact::PairContact c = contact.evaluate(a_xy, a_pose, b_xy, b_pose);
 //     if (c.has_point) { apply c.force to a at c.point, and -c.force to b at c.point; }
 //
+// Friction (the tangential force, with its per-pair history) is in pair_friction.hpp.
+//
 // What it computes is contact::evaluate_pair (potential_contact.hpp): the overlap verdict by the
 // entrance block (seed 000 §3.1.2, eq. 9), the intersection polygon IP (Table 3), the normal
 // force f = ∮_{∂IP} (phi_a - phi_b) n dL of the shortest-exit distance potential phi = kn d / H
@@ -74,6 +76,9 @@ struct PairContact {
   double area = 0.0;              // area of the intersection polygon, m²; 0 unless overlap
   double penetration = 0.0;       // penetration depth, m (>= 0): the minimum translation
                                   // distance that separates a and b; 0 unless overlap
+  double length = 0.0;            // contact length L, m: half the perimeter of the intersection
+                                  // polygon (the length of a thin face-to-face overlap); the L
+                                  // of the cohesion term c L (pair_friction.hpp); 0 unless overlap
   std::uint64_t predicates = 0;   // predicate calls spent on this pair, validation of the two
                                   // polygons included (0 when the counters are compiled out)
   std::uint64_t fallbacks = 0;    // of which re-evaluated exactly (these allocate, in GMP)
