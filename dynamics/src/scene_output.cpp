@@ -68,18 +68,23 @@ std::string xml_escape(const std::string& text) {
   return escaped;
 }
 
+// The head of a VTK XML PolyData file up to its one Piece's opening tag.
+void open_piece(std::ostream& out, std::size_t points, std::size_t verts, std::size_t polys) {
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfVerts=\"" << verts
+      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << polys << "\">\n";
+}
+
 void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
   std::size_t points = 0;
   for (const BlockState& b : blocks) points += b.vertices.size();
   AtomicFile output(file);
   std::ostream& out = output.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n"
-      << "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
-      << "NumberOfStrips=\"0\" NumberOfPolys=\"" << blocks.size() << "\">\n"
-      << "      <Points>\n"
+  open_piece(out, points, 0, blocks.size());
+  out << "      <Points>\n"
       << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
          "format=\"ascii\">\n";
   for (const BlockState& b : blocks) {
@@ -138,13 +143,8 @@ constexpr const char* state_names[] = {"stick", "slide", "open"};
 void write_contact_vtp(const fs::path& file, std::span<const ContactRow> rows) {
   AtomicFile output(file);
   std::ostream& out = output.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n"
-      << "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << rows.size() << "\" NumberOfVerts=\"" << rows.size()
-      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-      << "      <Points>\n"
+  open_piece(out, rows.size(), rows.size(), 0);
+  out << "      <Points>\n"
       << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
          "format=\"ascii\">\n";
   for (const ContactRow& r : rows) out << "          " << number(r.x) << ' ' << number(r.y) << " 0\n";
