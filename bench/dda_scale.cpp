@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/dda2d.hpp"
-#include "rockcontact/kernel/block_cutting.hpp"
+#include "rockcontact/kernel/2d/block_cutting.hpp"
 
 namespace {
 

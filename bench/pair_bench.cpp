@@ -8,7 +8,7 @@
 //                                 penetration depth (identity poses)
 //
 // Pools of 512 pairs (fixed seed, built before timing): `random` is the random family of
-// robustness_tests/pair_generators.hpp (overlap, touch, separate); `general` its pairs in general
+// robustness_tests/generators/include/rockcontact/generators/pair_generators.hpp (overlap, touch, separate); `general` its pairs in general
 // position (touching pairs left out); `adversarial` cycles through the 17 other families
 // (short and tiny edges, wedges down to 0.1°, near-parallel edges down to one ulp, exact
 // vertex and edge incidences, slivers, nested and identical polygons, offsets to 1e9 m,
@@ -31,13 +31,13 @@
 #include <string>
 #include <vector>
 
-#include "pair_generators.hpp"
-#include "rockcontact/contact/pair_contact.hpp"
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/entrance_block.hpp"
-#include "rockcontact/kernel/intersection_polygon.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
+#include "rockcontact/contact/embed/pair_contact.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
+#include "rockcontact/kernel/2d/intersection_polygon.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 #include "run_passes.hpp"
 
 namespace {

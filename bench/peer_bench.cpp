@@ -52,13 +52,13 @@
 #include <utility>
 #include <vector>
 
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/demarcation.hpp"
-#include "rockcontact/kernel/entrance_block.hpp"
-#include "rockcontact/kernel/intersection_polygon.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
-#include "rockcontact/kernel/point.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/demarcation.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
+#include "rockcontact/kernel/2d/intersection_polygon.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/2d/point.hpp"
 #include "naive_clip.hpp"
 #include "run_passes.hpp"
 

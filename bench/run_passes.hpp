@@ -7,7 +7,7 @@
 
 #include <cstddef>
 
-#include "rockcontact/kernel/predicate_stats.hpp"
+#include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::bench {
 

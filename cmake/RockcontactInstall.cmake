@@ -1,5 +1,6 @@
-# `cmake --install`: the headers, the three static libraries, the `rockcontact` executable, the
-# CMake package (find_package(rockcontact) -> rockcontact::rockcontact) and rockcontact.pc.
+# `cmake --install`: the headers, the static libraries (kernel, contact, dynamics, generators),
+# the `rockcontact` executable, the CMake package (find_package(rockcontact) ->
+# rockcontact::rockcontact) and rockcontact.pc.
 include(CMakePackageConfigHelpers)
 
 # The one target a host links: dynamics, hence contact and kernel. Hosts know it as
@@ -8,12 +9,16 @@ add_library(rockcontact_umbrella INTERFACE)
 add_library(rockcontact::rockcontact ALIAS rockcontact_umbrella)
 target_link_libraries(rockcontact_umbrella INTERFACE rockcontact_dynamics)
 
+set_target_properties(rockcontact_kernel_core PROPERTIES EXPORT_NAME kernel_core)
+set_target_properties(rockcontact_kernel2d PROPERTIES EXPORT_NAME kernel2d)
 set_target_properties(rockcontact_kernel PROPERTIES EXPORT_NAME kernel)
 set_target_properties(rockcontact_contact PROPERTIES EXPORT_NAME contact)
 set_target_properties(rockcontact_dynamics PROPERTIES EXPORT_NAME dynamics)
 set_target_properties(rockcontact_umbrella PROPERTIES EXPORT_NAME rockcontact)
+set_target_properties(rockcontact_generators PROPERTIES EXPORT_NAME generators)
 
-install(TARGETS rockcontact_kernel rockcontact_contact rockcontact_dynamics rockcontact_umbrella
+install(TARGETS rockcontact_kernel_core rockcontact_kernel2d rockcontact_kernel rockcontact_contact
+  rockcontact_dynamics rockcontact_umbrella rockcontact_generators
   EXPORT rockcontactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS rockcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -23,12 +28,17 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes
   FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
 
-# contact/include also holds the C API beside its rockcontact/ tree: rockcontact.h and its
+# contact/embed/include also holds the C API beside its rockcontact/ tree: rockcontact.h and its
 # Fortran module rockcontact.f90, installed as source since .mod files are compiler-specific.
 install(DIRECTORY
-    ${PROJECT_SOURCE_DIR}/kernel/include/
-    ${PROJECT_SOURCE_DIR}/contact/include/
-    ${PROJECT_SOURCE_DIR}/dynamics/include/
+    ${PROJECT_SOURCE_DIR}/kernel/core/include/
+    ${PROJECT_SOURCE_DIR}/kernel/2d/include/
+    ${PROJECT_SOURCE_DIR}/contact/friction/include/
+    ${PROJECT_SOURCE_DIR}/contact/potential2d/include/
+    ${PROJECT_SOURCE_DIR}/contact/embed/include/
+    ${PROJECT_SOURCE_DIR}/dynamics/dda2d/include/
+    ${PROJECT_SOURCE_DIR}/dynamics/io/include/
+    ${PROJECT_SOURCE_DIR}/robustness_tests/generators/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "*.f90")
 install(FILES ${PROJECT_BINARY_DIR}/include/rockcontact/version.hpp

@@ -33,9 +33,9 @@
 #include <vector>
 
 #include "rockcontact/dynamics/dda2d.hpp"
-#include "rockcontact/dynamics/json_read.hpp"
-#include "rockcontact/dynamics/pairs_io.hpp"
-#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/dynamics/io/json_read.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
 
 namespace {
 

@@ -24,10 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "pair_generators.hpp"
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace {
 

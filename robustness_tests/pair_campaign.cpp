@@ -13,9 +13,9 @@
 #include <thread>
 #include <utility>
 
-#include "rockcontact/kernel/crossing_point.hpp"
-#include "rockcontact/kernel/entrance_block.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/kernel/2d/crossing_point.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace rockcontact::robustness {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// The pair campaign: every generated pair (robustness_tests/pair_generators.hpp) run through
+// The pair campaign: every generated pair (robustness_tests/generators/include/rockcontact/generators/pair_generators.hpp) run through
 // the overlap verdict, the intersection polygon IP and the potential contact force under the
 // three number policies, with the properties below checked on every case and tallied per
 // family. pair_properties_test.cpp runs a deterministic slice of it in CI; robustness_table
@@ -56,12 +56,12 @@
 #include <string_view>
 #include <vector>
 
-#include "pair_generators.hpp"
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/intersection_polygon.hpp"
-#include "rockcontact/kernel/point.hpp"
-#include "rockcontact/kernel/predicate_stats.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/intersection_polygon.hpp"
+#include "rockcontact/kernel/2d/point.hpp"
+#include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::robustness {
 

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "rockcontact/contact/friction.hpp"
+#include "rockcontact/contact/friction/law.hpp"
 
 namespace {
 

@@ -31,9 +31,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rockcontact/contact/pair_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/entrance_block.hpp"
+#include "rockcontact/contact/embed/pair_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
 
 // Counting replacements of the global allocation functions, for (d). libstdc++'s array and
 // nothrow forms call these two.

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/contact/pair_friction.hpp"
+#include "rockcontact/contact/embed/pair_friction.hpp"
 
 namespace {
 

@@ -79,7 +79,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/contact/potential_contact.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
 
 namespace rc = rockcontact::contact;
 namespace rk = rockcontact::kernel;

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/checkpoint.hpp"
-#include "rockcontact/dynamics/pairs_io.hpp"
-#include "rockcontact/dynamics/scene.hpp"
-#include "rockcontact/dynamics/scene_output.hpp"
+#include "rockcontact/dynamics/io/checkpoint.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/dynamics/io/scene_output.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE dynamics_dda2d_block_matrices
 #include <boost/test/unit_test.hpp>
 
-// Per-block matrices of the 2D DDA engine (dynamics/src/block_matrices.hpp) against closed
+// Per-block matrices of the 2D DDA engine (dynamics/dda2d/src/block_matrices.hpp) against closed
 // forms and independent quadrature.
 
 #include <array>
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "../src/block_matrices.hpp"
+#include "../dda2d/src/block_matrices.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE dynamics_dda2d_broad_phase
 #include <boost/test/unit_test.hpp>
 
-// The uniform-grid broad phase of the 2D DDA engine (dynamics/src/broad_phase.hpp) against
+// The uniform-grid broad phase of the 2D DDA engine (dynamics/dda2d/src/broad_phase.hpp) against
 // brute force, and the engine on a scene large enough to use it (a Newton's cradle).
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "../src/broad_phase.hpp"
+#include "../dda2d/src/broad_phase.hpp"
 #include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
 

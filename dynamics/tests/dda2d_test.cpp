@@ -12,7 +12,7 @@
 
 #include "dda2d_fixtures.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "pair_generators.hpp"
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "run_command.hpp"
 
 namespace dyn = rockcontact::dynamics;

@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "run_command.hpp"
 
 namespace dyn = rockcontact::dynamics;

@@ -77,9 +77,9 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/block_cutting.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/block_cutting.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
 
 namespace {
 

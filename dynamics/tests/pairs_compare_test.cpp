@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE pairs_compare
-#include "rockcontact/dynamics/pairs_compare.hpp"
+#include "rockcontact/dynamics/apps/pairs_compare.hpp"
 
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "pair_generators.hpp"
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;

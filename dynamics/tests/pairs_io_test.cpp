@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE pairs_io
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_summary.hpp"
+#include "rockcontact/dynamics/apps/pairs_summary.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;

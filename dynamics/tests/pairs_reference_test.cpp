@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;

@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE report
-#include "rockcontact/dynamics/report.hpp"
+#include "rockcontact/dynamics/apps/report.hpp"
 
 #include <unistd.h>
 

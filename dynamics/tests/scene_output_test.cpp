@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE scene_output
-#include "rockcontact/dynamics/scene_output.hpp"
+#include "rockcontact/dynamics/io/scene_output.hpp"
 
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;

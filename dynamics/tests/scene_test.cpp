@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE scene
-#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
 
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
-#include "rockcontact/kernel/block_cutting.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/kernel/2d/block_cutting.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;

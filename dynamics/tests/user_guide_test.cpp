@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
-#include "rockcontact/dynamics/scene.hpp"
-#include "rockcontact/dynamics/scene_output.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/dynamics/io/scene_output.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;

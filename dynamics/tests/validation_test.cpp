@@ -1,5 +1,5 @@
 #define BOOST_TEST_MODULE validation
-#include "rockcontact/dynamics/validation.hpp"
+#include "rockcontact/dynamics/apps/validation.hpp"
 
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include <rockcontact/contact/pair_contact.hpp>
+#include <rockcontact/contact/embed/pair_contact.hpp>
 #include <rockcontact/version.hpp>
 
 namespace {

@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include <rockcontact/contact/pair_friction.hpp>
+#include <rockcontact/contact/embed/pair_friction.hpp>
 #include <rockcontact/version.hpp>
 
 namespace {

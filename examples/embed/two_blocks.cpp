@@ -2,7 +2,7 @@
 // through the one-header pair API (plain arrays, a reusable evaluator).
 #include <cstdio>
 
-#include "rockcontact/contact/pair_contact.hpp"
+#include "rockcontact/contact/embed/pair_contact.hpp"
 
 int main() {
   const double square[] = {0, 0, 1, 0, 1, 1, 0, 1};  // x0, y0, x1, y1, ... (m), CCW

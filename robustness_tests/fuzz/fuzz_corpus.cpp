@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pair_generators.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
 #include "pair_input.hpp"
 
 namespace {

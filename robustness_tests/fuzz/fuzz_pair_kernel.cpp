@@ -38,13 +38,13 @@
 #include <string>
 #include <vector>
 
-#include "pair_generators.hpp"
+#include "rockcontact/generators/pair_generators.hpp"
 #include "pair_input.hpp"
-#include "rockcontact/contact/potential_contact.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
-#include "rockcontact/kernel/entrance_block.hpp"
-#include "rockcontact/kernel/intersection_polygon.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
+#include "rockcontact/kernel/2d/intersection_polygon.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace {
 

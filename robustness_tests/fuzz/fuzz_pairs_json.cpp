@@ -17,8 +17,8 @@
 #include <string>
 
 #include "json_target.hpp"
-#include "rockcontact/dynamics/pairs_io.hpp"
-#include "rockcontact/kernel/number_policy.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace {
 

@@ -40,9 +40,9 @@
 #include <vector>
 
 #include "json_target.hpp"
-#include "rockcontact/dynamics/scene.hpp"
-#include "rockcontact/kernel/block_cutting.hpp"
-#include "rockcontact/kernel/convex_polygon.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/kernel/2d/block_cutting.hpp"
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "rockcontact/dynamics/pairs_io.hpp"
+#include "rockcontact/dynamics/io/pairs_io.hpp"
 
 namespace rockcontact::fuzz {
 

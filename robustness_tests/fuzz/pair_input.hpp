@@ -28,7 +28,7 @@
 #include <utility>
 #include <vector>
 
-#include "rockcontact/kernel/point.hpp"
+#include "rockcontact/kernel/2d/point.hpp"
 
 namespace rockcontact::fuzz {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/dda2d.hpp"
-#include "rockcontact/dynamics/scene.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
 
 namespace rockcontact::stiff {
 namespace {

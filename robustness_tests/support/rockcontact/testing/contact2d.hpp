@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/kernel/point.hpp"
+#include "rockcontact/kernel/2d/point.hpp"
 #include "rockcontact/testing/json_file.hpp"
 
 namespace rockcontact::testing {

@@ -1,0 +1,90 @@
+#pragma once
+// Normal contact of two convex polygons by the shortest-exit distance potential
+// (seed 000 §3.2, eq. 11-20).
+//
+//   f_CP = ∮_{∂IP} (phi_CP - phi_TP) n dL                                          (eq. 11)
+//
+// with IP the intersection polygon, n its outward unit normal and phi = kn d_exit / H the
+// potential of each polygon (eq. 14). Steps, per pair:
+//   1. overlap verdict by the entrance block (eq. 9);            kernel/entrance_block.hpp
+//   2. IP by clipping TP with CP's edge half-planes (Table 3);     kernel/intersection_polygon.hpp
+//   3. for each IP edge: the demarcation points of CP and of TP on it (§3.2.3), merged; on an
+//      IP edge that lies on CP's boundary phi_CP = 0 (likewise for TP), so that polygon
+//      contributes no points there;                               kernel/demarcation.hpp
+//   4. the trapezoid rule between consecutive points (eq. 16), exact because phi is linear on
+//      each piece in `exact` demarcation mode, and the sum over pieces (eq. 18);
+//   5. the moment of the distributed load about the IP centroid (eq. 17 and 20, integrated in
+//      closed form per piece), which fixes the line of action; the contact point pg is the foot
+//      of the perpendicular from the IP centroid to that line (§3.2.4).
+//
+// The combinatorics (verdict, IP vertices, which edge each IP edge lies on) follow the policy's
+// predicates. Under Float and Filtered the constructions are double; under Exact the IP
+// vertices, demarcation parameters, integrals and moments are GMP rationals (edge lengths, the
+// only irrational quantity, at 256 bits) and each output number is rounded once.
+//
+// Units: lengths m, kn Pa (force per unit thickness per unit length per unit penetration
+// depth, divided by H: phi = kn d / H is a pressure), forces N per metre of thickness.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "rockcontact/kernel/2d/convex_polygon.hpp"
+#include "rockcontact/kernel/2d/demarcation.hpp"
+#include "rockcontact/kernel/2d/detail/potential_impl.hpp"
+#include "rockcontact/kernel/2d/entrance_block.hpp"
+#include "rockcontact/kernel/2d/intersection_polygon.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/2d/point.hpp"
+#include "rockcontact/kernel/2d/tolerances.hpp"
+
+namespace rockcontact::contact {
+
+using kernel::ConvexPolygon;
+using kernel::Demarcation;
+using kernel::Overlap;
+using kernel::Point2;
+using kernel::Vector2;
+
+struct PotentialContactParams {
+  double kn = 1.0e7;  // normal penalty, Pa (seed 000 eq. 14)
+  double H = 1.0;     // potential length scale, m (> 0)
+  Demarcation demarcation = Demarcation::exact;
+  // Paper demarcation only: edges shorter than small_edge_fraction * H get a virtual node.
+  double small_edge_fraction = kernel::default_small_edge_fraction;
+};
+
+inline PotentialContactParams default_potential_contact_params() { return {}; }
+
+// Throws std::invalid_argument unless kn and H are finite and > 0 and small_edge_fraction is
+// finite and >= 0. evaluate_pair checks this on every call; callers that hold parameters
+// check them once, up front.
+void check_params(const PotentialContactParams& params);
+
+struct PairResult {
+  Overlap status = Overlap::separate;
+  kernel::IntersectionPolygon ip_features;  // symbolic IP: stable ids of every vertex and edge
+  std::vector<Point2> ip;                   // IP vertices, m, CCW; empty unless `overlap`
+  double area = 0.0;                        // IP area, m²
+  Vector2 force;                            // normal force on CP, N/m; on TP it is -force
+  std::optional<Point2> point;              // contact point pg, m; empty when force is zero
+  std::uint64_t predicates = 0;             // predicate calls spent on this pair
+  std::uint64_t fallbacks = 0;              // of which re-evaluated exactly
+};
+
+// Scratch space reused across pairs: no allocation once it has grown to the largest pair.
+struct PairWorkspace {
+  kernel::ClipWorkspace clip;
+  kernel::detail::ForceScratch<double> force;
+};
+
+// Throws std::invalid_argument when params are not finite and positive (kn, H).
+template <kernel::NumberPolicy Policy>
+void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                   const PotentialContactParams& params, PairWorkspace& workspace, PairResult& out);
+
+// Convenience: the policy chosen at run time, fresh workspace.
+PairResult evaluate_pair(kernel::PolicyKind policy, const ConvexPolygon& cp, const ConvexPolygon& tp,
+                         const PotentialContactParams& params = default_potential_contact_params());
+
+}  // namespace rockcontact::contact

@@ -1,0 +1,168 @@
+#include "rockcontact/dynamics/io/json_read.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+namespace rockcontact::dynamics {
+
+using nlohmann::json;
+
+std::string json_child(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string json_element(const std::string& path, std::size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+std::string describe_json(const json& value) {
+  constexpr std::size_t max_shown = 40;
+  if (value.is_null()) return "null";
+  // A document built in memory may hold NaN or infinity, which dump() would print as null.
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
+    return "non-finite number " + std::to_string(value.get<double>());
+  }
+  std::string text = value.dump();
+  if (text.size() > max_shown) text = text.substr(0, max_shown) + "...";
+  return std::string(value.type_name()) + " " + text;
+}
+
+json read_json_file(const std::filesystem::path& file) {
+  const std::string source = file.string();
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw InputError(source, "", "cannot open the file for reading");
+  try {
+    return json::parse(stream);
+  } catch (const json::exception& e) {
+    // nlohmann's messages start with "[json.exception.<kind>.<id>] "; the rest carries the
+    // line and column of a syntax error.
+    const std::string_view what = e.what();
+    const auto end_of_tag = what.find("] ");
+    const auto detail = end_of_tag == std::string_view::npos ? what : what.substr(end_of_tag + 2);
+    throw InputError(source, "", "malformed JSON: " + std::string(detail));
+  }
+}
+
+const JsonField& json_field(std::span<const JsonField> fields, std::string_view name) {
+  return *std::find_if(fields.begin(), fields.end(),
+                       [&](const JsonField& f) { return f.name == name; });
+}
+
+void JsonReader::fail(const std::string& path, const std::string& problem) const {
+  throw InputError(source_, path, problem);
+}
+
+void JsonReader::fail_expected(const std::string& path, std::string_view expected,
+                               const json& got) const {
+  fail(path, "expected " + std::string(expected) + ", got " + describe_json(got));
+}
+
+void JsonReader::check_object(const json& value, const std::string& path, std::string_view expected,
+                              std::span<const JsonField> fields) const {
+  if (!value.is_object()) fail_expected(path, expected, value);
+  std::string names;
+  for (const JsonField& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);
+  for (const auto& member : value.items()) {
+    // A reference, not a structured binding: clang 14 cannot capture a binding in a lambda.
+    const std::string& key = member.key();
+    const bool known = std::any_of(fields.begin(), fields.end(),
+                                   [&](const JsonField& f) { return f.name == key; });
+    if (!known) fail(json_child(path, key), "unknown field; expected only " + names);
+  }
+  for (const JsonField& f : fields) {
+    if (f.required && !value.contains(f.name)) {
+      fail(json_child(path, f.name), "missing field; expected " + std::string(f.expected));
+    }
+  }
+}
+
+double JsonReader::number(const json& value, const std::string& path,
+                          std::string_view expected) const {
+  if (!value.is_number() || !std::isfinite(value.get<double>())) {
+    fail_expected(path, expected, value);
+  }
+  return value.get<double>();
+}
+
+double JsonReader::positive(const json& value, const std::string& path,
+                            std::string_view expected) const {
+  if (!value.is_number() || !std::isfinite(value.get<double>()) || !(value.get<double>() > 0.0)) {
+    fail_expected(path, expected, value);
+  }
+  return value.get<double>();
+}
+
+double JsonReader::non_negative(const json& value, const std::string& path,
+                                std::string_view expected) const {
+  if (!value.is_number() || !std::isfinite(value.get<double>()) || !(value.get<double>() >= 0.0)) {
+    fail_expected(path, expected, value);
+  }
+  return value.get<double>();
+}
+
+std::int64_t JsonReader::integer(const json& value, const std::string& path,
+                                 std::string_view expected) const {
+  if (value.is_number_unsigned() &&
+      value.get<std::uint64_t>() <=
+          static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    return static_cast<std::int64_t>(value.get<std::uint64_t>());
+  }
+  if (value.is_number_integer() && !value.is_number_unsigned()) return value.get<std::int64_t>();
+  fail_expected(path, expected, value);
+}
+
+bool JsonReader::boolean(const json& value, const std::string& path,
+                         std::string_view expected) const {
+  if (!value.is_boolean()) fail_expected(path, expected, value);
+  return value.get<bool>();
+}
+
+const std::string& JsonReader::string(const json& value, const std::string& path,
+                                      std::string_view expected) const {
+  if (!value.is_string()) fail_expected(path, expected, value);
+  return value.get_ref<const std::string&>();
+}
+
+std::vector<double> JsonReader::numbers(const json& value, const std::string& path,
+                                        std::size_t count, std::string_view expected) const {
+  if (!value.is_array() || value.size() != count) fail_expected(path, expected, value);
+  std::vector<double> result;
+  result.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const json& item = value[i];
+    if (!item.is_number() || !std::isfinite(item.get<double>())) {
+      fail_expected(json_element(path, i), "a finite number", item);
+    }
+    result.push_back(item.get<double>());
+  }
+  return result;
+}
+
+std::vector<kernel::Point2> JsonReader::polygon(const json& value, const std::string& path,
+                                                std::string_view expected) const {
+  if (!value.is_array()) fail_expected(path, expected, value);
+  std::vector<kernel::Point2> vertices;
+  vertices.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const json& v = value[i];
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+      fail_expected(json_element(path, i), "a vertex, an [x, y] pair of numbers", v);
+    }
+    vertices.push_back({v[0].get<double>(), v[1].get<double>()});
+  }
+  return vertices;
+}
+
+void UniqueIds::add(const JsonReader& reader, const std::string& array_path, std::size_t index,
+                    const std::string& id) {
+  const auto [it, inserted] = first_index_.emplace(id, index);
+  if (!inserted) {
+    reader.fail(json_child(json_element(array_path, index), "id"),
+                "duplicate id \"" + id + "\" (also " + json_element(array_path, it->second) +
+                    ".id); expected ids unique within the file");
+  }
+}
+
+}  // namespace rockcontact::dynamics

@@ -1,0 +1,488 @@
+#include "rockcontact/dynamics/io/scene_output.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <system_error>
+#include <utility>
+
+#include "rockcontact/dynamics/io/checkpoint.hpp"
+
+namespace rockcontact::dynamics {
+
+namespace {
+
+using nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+// Shortest text that reads back as the same double ("0.1", "1e-05", "-3.25").
+std::string number(double value) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), end);
+}
+
+// Pixel coordinates: two decimals are far below what a viewer shows.
+std::string pixel(double value) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                       std::chars_format::fixed, 2);
+  return std::string(buffer.data(), end);
+}
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string xml_escape(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// The head of a VTK XML PolyData file up to its one Piece's opening tag.
+void open_piece(std::ostream& out, std::size_t points, std::size_t verts, std::size_t polys) {
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfVerts=\"" << verts
+      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << polys << "\">\n";
+}
+
+void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
+  std::size_t points = 0;
+  for (const BlockState& b : blocks) points += b.vertices.size();
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
+  open_piece(out, points, 0, blocks.size());
+  out << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    for (const kernel::Point2& p : b.vertices) {
+      out << "          " << number(p.x) << ' ' << number(p.y) << " 0\n";
+    }
+  }
+  out << "        </DataArray>\n      </Points>\n      <Polys>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  std::size_t next = 0;
+  for (const BlockState& b : blocks) {
+    out << "         ";
+    for (std::size_t i = 0; i < b.vertices.size(); ++i) out << ' ' << next++;
+    out << '\n';
+  }
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  std::size_t offset = 0;
+  for (const BlockState& b : blocks) out << ' ' << (offset += b.vertices.size());
+  out << "\n        </DataArray>\n      </Polys>\n"
+      << "      <CellData Scalars=\"block\" Vectors=\"velocity\">\n"
+      << "        <DataArray type=\"Int32\" Name=\"block\" format=\"ascii\">\n         ";
+  for (std::size_t i = 0; i < blocks.size(); ++i) out << ' ' << i;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"UInt8\" Name=\"fixed\" format=\"ascii\">\n         ";
+  for (const BlockState& b : blocks) out << ' ' << (b.fixed ? 1 : 0);
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    out << "          " << number(b.velocity[0]) << ' ' << number(b.velocity[1]) << " 0\n";
+  }
+  out << "        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"omega\" format=\"ascii\">\n         ";
+  for (const BlockState& b : blocks) out << ' ' << number(b.velocity[2]);
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const BlockState& b : blocks) {
+    out << "          " << number(b.stress[0]) << ' ' << number(b.stress[1]) << ' '
+        << number(b.stress[2]) << '\n';
+  }
+  out << "        </DataArray>\n      </CellData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  output.commit();
+}
+
+// One contact row of contacts.csv and contacts_NNNN.vtp.
+struct ContactRow {
+  std::string a, b;
+  double x, y, nx, ny, fn, ft;
+  int state;  // 0 stick, 1 slide, 2 open
+};
+
+constexpr const char* state_names[] = {"stick", "slide", "open"};
+
+void write_contact_vtp(const fs::path& file, std::span<const ContactRow> rows) {
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
+  open_piece(out, rows.size(), rows.size(), 0);
+  out << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const ContactRow& r : rows) out << "          " << number(r.x) << ' ' << number(r.y) << " 0\n";
+  out << "        </DataArray>\n      </Points>\n      <Verts>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (std::size_t k = 0; k < rows.size(); ++k) out << ' ' << k;
+  out << "\n        </DataArray>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  for (std::size_t k = 0; k < rows.size(); ++k) out << ' ' << k + 1;
+  out << "\n        </DataArray>\n      </Verts>\n"
+      << "      <PointData Scalars=\"fn\" Vectors=\"normal\">\n"
+      << "        <DataArray type=\"Float64\" Name=\"normal\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
+  for (const ContactRow& r : rows) out << "          " << number(r.nx) << ' ' << number(r.ny) << " 0\n";
+  out << "        </DataArray>\n";
+  for (const auto& [name, member] : {std::pair{"fn", &ContactRow::fn}, std::pair{"ft", &ContactRow::ft}}) {
+    out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n         ";
+    for (const ContactRow& r : rows) out << ' ' << number(r.*member);
+    out << "\n        </DataArray>\n";
+  }
+  out << "        <DataArray type=\"Int32\" Name=\"state\" format=\"ascii\">\n         ";
+  for (const ContactRow& r : rows) out << ' ' << r.state;
+  out << "\n        </DataArray>\n      </PointData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  output.commit();
+}
+
+// A ParaView collection of the files of `frames`.
+void write_pvd(const fs::path& file, std::span<const std::pair<double, std::string>> frames) {
+  AtomicFile pvd(file);
+  std::ostream& out = pvd.stream();
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  for (const auto& [time, name] : frames) {
+    out << "    <DataSet timestep=\"" << number(time) << "\" group=\"\" part=\"0\" file=\""
+        << name << "\"/>\n";
+  }
+  out << "  </Collection>\n</VTKFile>\n";
+  pvd.commit();
+}
+
+bool all_finite(std::span<const kernel::Point2> polygon) {
+  return std::all_of(polygon.begin(), polygon.end(),
+                     [](const auto& p) { return std::isfinite(p.x) && std::isfinite(p.y); });
+}
+
+// The blocks at `time` filled, over the movable blocks at `start_time` as dashed outlines
+// (`start`: each block's vertices then, in the same order; empty: none), with both times
+// written in the corner.
+void write_svg(const fs::path& file, std::span<const BlockState> blocks,
+               std::span<const std::vector<kernel::Point2>> start, double start_time,
+               std::span<const std::string> tracked, double time) {
+  constexpr double width_px = 800.0;
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
+  double xmax = -xmin, ymax = -xmin;
+  const auto extend = [&](std::span<const kernel::Point2> polygon) {
+    for (const kernel::Point2& p : polygon) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+      ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+    }
+  };
+  for (const BlockState& b : blocks) extend(b.vertices);
+  for (const auto& polygon : start) extend(polygon);
+  if (!(xmin < xmax)) xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0;  // nothing finite to show
+  const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
+  const double scale = width_px / (xmax - xmin + 2.0 * margin);
+  const double height_px = (ymax - ymin + 2.0 * margin) * scale;
+  AtomicFile output(file);
+  std::ostream& out = output.stream();
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
+      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
+      << "\">\n"
+      << "  <title>t = " << number(time) << " s</title>\n"
+      << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const auto points = [&](std::span<const kernel::Point2> polygon) {
+    std::string text;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      text += (i == 0 ? "" : " ") + pixel((polygon[i].x - xmin + margin) * scale) + ',' +
+              pixel((ymax + margin - polygon[i].y) * scale);
+    }
+    return text;
+  };
+  for (const BlockState& b : blocks) {
+    if (!all_finite(b.vertices)) continue;
+    const bool is_tracked = std::find(tracked.begin(), tracked.end(), b.id) != tracked.end();
+    const char* style = b.fixed      ? "fill=\"#bdbdbd\" stroke=\"#616161\" stroke-width=\"1\""
+                        : is_tracked ? "fill=\"#f28e2b\" stroke=\"#7f3b08\" stroke-width=\"2\""
+                                     : "fill=\"#9ecae1\" stroke=\"#2171b5\" stroke-width=\"1\"";
+    out << "  <polygon " << style << " points=\"" << points(b.vertices) << "\"><title>"
+        << xml_escape(b.id) << "</title></polygon>\n";
+  }
+  for (std::size_t i = 0; i < start.size() && i < blocks.size(); ++i) {
+    if (blocks[i].fixed || !all_finite(start[i])) continue;
+    out << "  <polygon fill=\"none\" stroke=\"#525252\" stroke-width=\"1\" "
+           "stroke-dasharray=\"4 3\" points=\""
+        << points(start[i]) << "\"><title>" << xml_escape(blocks[i].id) << " at t = "
+        << number(start_time) << " s</title></polygon>\n";
+  }
+  out << "  <text x=\"8\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">t = "
+      << number(time) << " s; dashed: t = " << number(start_time) << " s</text>\n"
+      << "</svg>\n";
+  output.commit();
+}
+
+// The energy terms by name, in the order of summary.json and energies.csv.
+std::array<std::pair<const char*, double>, 7> energy_terms(const Energies& e) {
+  return {{{"kinetic", e.kinetic},
+           {"gravitational", e.gravitational},
+           {"strain", e.strain},
+           {"contact", e.contact},
+           {"friction_dissipated", e.friction_dissipated},
+           {"damping_dissipated", e.damping_dissipated},
+           {"total", e.total()}}};
+}
+
+ordered_json energies_json(const Energies& e) {
+  ordered_json out;
+  for (const auto& [name, value] : energy_terms(e)) out[name] = value;
+  return out;
+}
+
+std::size_t decimal_digits(std::size_t value) {
+  std::size_t digits = 1;
+  while (value >= 10) value /= 10, ++digits;
+  return digits;
+}
+
+}  // namespace
+
+SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
+    : dir_(std::move(dir)), track_(scene.track) {
+  const std::size_t steps = step_count(scene);
+  const std::size_t last_frame = steps / scene.every + (steps % scene.every == 0 ? 0 : 1);
+  frame_digits_ = std::max<std::size_t>(4, decimal_digits(last_frame));
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
+  tracks_.emplace(dir_ / "tracks.csv");
+  tracks_->stream() << "t,block,x,y,rotation,vx,vy,omega\n";
+  energies_.emplace(dir_ / "energies.csv");
+  energies_->stream() << 't';
+  for (const auto& term : energy_terms(Energies{})) energies_->stream() << ',' << term.first;
+  energies_->stream() << '\n';
+  contacts_.emplace(dir_ / "contacts.csv");
+  contacts_->stream() << "t,block_a,block_b,x,y,nx,ny,fn,ft,state\n";
+}
+
+void SceneRecorder::record(double time, std::span<const BlockState> blocks,
+                           std::span<const ContactState> contacts, const Energies& energies) {
+  for (const std::string& id : track_) {
+    const auto it =
+        std::find_if(blocks.begin(), blocks.end(), [&](const BlockState& b) { return b.id == id; });
+    if (it == blocks.end()) continue;
+    tracks_->stream() << number(time) << ',' << csv_field(id) << ',' << number(it->centroid.x) << ','
+            << number(it->centroid.y) << ',' << number(it->rotation) << ','
+            << number(it->velocity[0]) << ',' << number(it->velocity[1]) << ','
+            << number(it->velocity[2]) << '\n';
+  }
+  if (!tracks_->stream()) throw OutputError("cannot write " + tracks_->target().string());
+  energies_->stream() << number(time);
+  for (const auto& term : energy_terms(energies)) energies_->stream() << ',' << number(term.second);
+  energies_->stream() << '\n';
+  if (!energies_->stream()) throw OutputError("cannot write " + energies_->target().string());
+  std::vector<ContactRow> rows;
+  std::map<std::array<std::size_t, 4>, Open> now;
+  for (const ContactState& c : contacts) {
+    const double size = std::hypot(c.normal_force.x, c.normal_force.y);
+    const double nx = c.normal_force.x / size, ny = c.normal_force.y / size;
+    const double fx = c.normal_force.x + c.friction_force.x + c.damping_force.x;
+    const double fy = c.normal_force.y + c.friction_force.y + c.damping_force.y;
+    ContactRow& r = rows.emplace_back(ContactRow{blocks[c.cp].id, blocks[c.tp].id, c.point.x,
+                                                 c.point.y, nx, ny, fx * nx + fy * ny,
+                                                 -fx * ny + fy * nx, c.sliding ? 1 : 0});
+    now[{c.cp, c.tp, c.cp_part, c.tp_part}] = {r.a, r.b, r.x, r.y, r.nx, r.ny};
+  }
+  for (const auto& [key, gone] : last_contacts_) {
+    if (!now.contains(key)) rows.push_back({gone.a, gone.b, gone.x, gone.y, gone.nx, gone.ny, 0.0, 0.0, 2});
+  }
+  last_contacts_ = std::move(now);
+  for (const ContactRow& r : rows) {
+    contacts_->stream() << number(time) << ',' << csv_field(r.a) << ',' << csv_field(r.b) << ','
+                        << number(r.x) << ',' << number(r.y) << ',' << number(r.nx) << ','
+                        << number(r.ny) << ',' << number(r.fn) << ',' << number(r.ft) << ','
+                        << state_names[r.state] << '\n';
+  }
+  if (!contacts_->stream()) throw OutputError("cannot write " + contacts_->target().string());
+  std::string index = std::to_string(frames_.size());
+  index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
+  write_vtp(dir_ / ("frame_" + index + ".vtp"), blocks);
+  if (frames_.empty()) {
+    for (const BlockState& b : blocks) start_.push_back(b.vertices);
+  }
+  write_contact_vtp(dir_ / ("contacts_" + index + ".vtp"), rows);
+  frames_.push_back({time, index});
+}
+
+void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_json& summary) {
+  tracks_->commit();
+  energies_->commit();
+  contacts_->commit();
+  for (const auto& [prefix, collection] : {std::pair{"frame_", "frames.pvd"},
+                                             std::pair{"contacts_", "contacts.pvd"}}) {
+    std::vector<std::pair<double, std::string>> files;
+    for (const Frame& f : frames_) files.emplace_back(f.time, prefix + f.index + ".vtp");
+    write_pvd(dir_ / collection, files);
+  }
+  write_svg(dir_ / "final.svg", blocks, start_, frames_.empty() ? 0.0 : frames_.front().time,
+            track_, frames_.empty() ? 0.0 : frames_.back().time);
+  AtomicFile summary_file(dir_ / "summary.json");
+  summary_file.stream() << summary.dump(2) << '\n';
+  summary_file.commit();
+}
+
+ordered_json run_summary(const Scene& scene, const RunReport& report) {
+  ordered_json out;
+  out["scene"] = scene.source;
+  out["description"] = scene.description;
+  out["status"] = report.status;
+  if (!report.error.empty()) out["error"] = report.error;
+  out["steps"] = report.steps;
+  out["time"] = report.time;
+  out["dt"] = scene.params.dt;
+  out["critical_time_step"] = std::isfinite(report.critical_time_step)
+                                  ? ordered_json(report.critical_time_step)
+                                  : ordered_json(nullptr);
+  out["critical_time_step_source"] = report.critical_time_step_source;
+  out["H"] = scene.law.normal.H;
+  out["H_rule"] = to_string(scene.h_rule);
+  if (!report.restarted_from.empty()) {
+    out["restart"] = {{"file", report.restarted_from.string()},
+                      {"steps", report.restart_steps},
+                      {"time", static_cast<double>(report.restart_steps) * scene.params.dt}};
+  }
+  out["wall_seconds"] = report.simulation_seconds + report.output_seconds;
+  out["simulation_seconds"] = report.simulation_seconds;
+  out["output_seconds"] = report.output_seconds;
+  out["energy"] = {{"start", energies_json(report.initial)}, {"end", energies_json(report.final)}};
+  out["predicates"] = {{"calls", report.predicates.total_calls()},
+                       {"fallbacks", report.predicates.total_fallbacks()}};
+  out["max_penetration"] = report.max_penetration;
+  const Equilibrium& e = report.equilibrium;
+  out["initial_equilibrium"] =
+      e.ran ? ordered_json{{"blocks", e.blocks}, {"iterations", e.iterations}, {"ratio", e.ratio}}
+            : ordered_json(nullptr);
+  if (scene.params.analysis == Analysis::static_equilibrium) {
+    ordered_json history = ordered_json::array();
+    for (const auto& [step, ratio] : report.balance) history.push_back({step, ratio});
+    out["static"] = {{"tolerance", scene.static_tolerance},
+                     {"converged", report.converged},
+                     {"iterations", report.steps},
+                     {"ratio", report.balance.empty() ? 0.0 : report.balance.back().second},
+                     {"history", std::move(history)}};
+  }
+  ordered_json ids = ordered_json::array();
+  for (const BlockSpec& b : scene.blocks) ids.push_back(b.id);
+  out["blocks"] = std::move(ids);
+  out["tracked"] = scene.track;
+  out["frames"] = report.frames;
+  return out;
+}
+
+RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  clock::duration output_time{};
+  RunReport report;
+  if (options.checkpoint_every > 0 && options.out_dir.empty()) {
+    throw std::invalid_argument("run_scene: checkpoints need an output directory");
+  }
+  std::optional<Checkpoint> resume;
+  if (!options.restart.empty()) {
+    resume = read_checkpoint(options.restart, scene);
+    report.restarted_from = options.restart;
+    report.restart_steps = resume->engine.steps;
+  }
+  Dda2d simulation = resume ? Dda2d(scene.blocks, scene.law, scene.params, resume->engine)
+                            : Dda2d(scene.blocks, scene.law, scene.params);
+  report.equilibrium = simulation.initial_equilibrium();
+  std::optional<SceneRecorder> recorder;
+  const auto timed = [&](auto&& write) {
+    const auto t0 = clock::now();
+    write();
+    output_time += clock::now() - t0;
+  };
+  const bool static_analysis = scene.params.analysis == Analysis::static_equilibrium;
+  const auto record = [&] {
+    if (static_analysis) report.balance.emplace_back(simulation.steps(), simulation.balance_ratio());
+    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks(), simulation.contacts(),
+                                        simulation.energies()); });
+  };
+  // Fills the report from the simulation as it stands and completes the files.
+  const auto conclude = [&] {
+    report.steps = simulation.steps();
+    report.time = simulation.time();
+    report.final = simulation.energies();
+    report.max_penetration = simulation.max_penetration();
+    report.critical_time_step = simulation.critical_time_step();
+    report.critical_time_step_source = simulation.critical_time_step_source();
+    report.predicates = simulation.predicate_counters();
+    if (!recorder) {
+      report.simulation_seconds = std::chrono::duration<double>(clock::now() - start).count();
+      return;
+    }
+    report.frames = recorder->frames();
+    const auto t0 = clock::now();
+    report.simulation_seconds = std::chrono::duration<double>(t0 - start - output_time).count();
+    report.output_seconds = std::chrono::duration<double>(output_time).count();
+    recorder->finish(simulation.blocks(), run_summary(scene, report));
+    report.output_seconds += std::chrono::duration<double>(clock::now() - t0).count();
+  };
+
+  if (!options.out_dir.empty()) timed([&] { recorder.emplace(scene, options.out_dir); });
+  report.initial = resume ? resume->initial : simulation.energies();
+  record();
+  if (options.observer) options.observer(simulation);
+  const std::size_t total = step_count(scene);
+  try {
+    for (std::size_t s = simulation.steps() + 1; s <= total; ++s) {
+      simulation.step();
+      if (options.checkpoint_every > 0 && s % options.checkpoint_every == 0) {
+        timed([&] {
+          write_checkpoint(options.out_dir / "checkpoint.json", scene,
+                           {scene.digest, report.initial, simulation.snapshot()});
+        });
+      }
+      if (options.observer) options.observer(simulation);
+      report.converged = static_analysis && simulation.balance_ratio() < scene.static_tolerance;
+      if (s % scene.every == 0 || s == total || report.converged) record();
+      if (options.progress) options.progress(s, total);
+      if (report.converged) break;
+    }
+  } catch (const StabilityError& e) {
+    report.status = "stopped";
+    report.error = e.what();
+  }
+  conclude();
+  return report;
+}
+
+}  // namespace rockcontact::dynamics

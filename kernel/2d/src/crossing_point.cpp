@@ -1,0 +1,63 @@
+#include "rockcontact/kernel/2d/crossing_point.hpp"
+
+#include <cmath>
+
+#include "rockcontact/kernel/2d/detail/constructions.hpp"
+#include "rockcontact/kernel/core/detail/error_bounded.hpp"
+#include "rockcontact/kernel/core/detail/exact_number.hpp"
+#include "rockcontact/kernel/core/predicate_stats.hpp"
+
+namespace rockcontact::kernel {
+namespace detail {
+
+std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point2& q, const Point2& t0,
+                                                    const Point2& t1, double tolerance) {
+  constexpr double e = (4.0 + 32.0 * unit_roundoff) * unit_roundoff;  // ccwerrboundA + u: see the header
+  const double lx = q.x - p.x, ly = q.y - p.y;
+  const double dx = t1.x - t0.x, dy = t1.y - t0.y;
+  const double wx = p.x - t0.x, wy = p.y - t0.y;
+  const double n = cross(lx, ly, wx, wy);
+  const double d = cross(lx, ly, dx, dy);
+  const double n_bar = std::fabs(lx * wy) + std::fabs(ly * wx);
+  const double d_bar = std::fabs(lx * dy) + std::fabs(ly * dx);
+  double s = n / d;
+  const double ds = ((e * (n_bar + d_bar) + 0x1p-1073) / std::fabs(d) + unit_roundoff * std::fabs(s) +
+                     smallest_subnormal) *
+                    (1.0 + 0x1p-40);
+  if (!std::isfinite(s) || !std::isfinite(ds) || !(ds <= tolerance)) return std::nullopt;
+  // The exact s lies in [0, 1]; clamping s' there cannot move it further from s.
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  return CertifiedCrossing{{t0.x + s * dx, t0.y + s * dy}, ds};
+}
+
+}  // namespace detail
+
+namespace {
+
+Point2 crossing_rounded_exactly(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
+  return detail::round(detail::construct_crossing<mpq_class>(p, q, t0, t1));
+}
+
+}  // namespace
+
+template <NumberPolicy Policy>
+Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
+  detail::count_call(PredicateKind::crossing_point);
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    return detail::round(detail::construct_crossing<double>(p, q, t0, t1));
+  } else if constexpr (Policy::kind == PolicyKind::filtered) {
+    if (const auto c = detail::crossing_in_double(p, q, t0, t1, crossing_parameter_tolerance)) {
+      return c->point;
+    }
+    detail::count_fallback(PredicateKind::crossing_point);
+    return crossing_rounded_exactly(p, q, t0, t1);
+  } else {
+    return crossing_rounded_exactly(p, q, t0, t1);
+  }
+}
+
+template Point2 construct_crossing_point<Float>(const Point2&, const Point2&, const Point2&, const Point2&);
+template Point2 construct_crossing_point<Filtered>(const Point2&, const Point2&, const Point2&, const Point2&);
+template Point2 construct_crossing_point<Exact>(const Point2&, const Point2&, const Point2&, const Point2&);
+
+}  // namespace rockcontact::kernel
