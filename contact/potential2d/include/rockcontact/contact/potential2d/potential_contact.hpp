@@ -8,19 +8,13 @@
 // potential of each polygon (eq. 14). Steps, per pair:
 //   1. overlap verdict by the entrance block (eq. 9);            kernel/entrance_block.hpp
 //   2. IP by clipping TP with CP's edge half-planes (Table 3);     kernel/intersection_polygon.hpp
-//   3. for each IP edge: the demarcation points of CP and of TP on it (§3.2.3), merged; on an
-//      IP edge that lies on CP's boundary phi_CP = 0 (likewise for TP), so that polygon
-//      contributes no points there;                               kernel/demarcation.hpp
-//   4. the trapezoid rule between consecutive points (eq. 16), exact because phi is linear on
-//      each piece in `exact` demarcation mode, and the sum over pieces (eq. 18);
-//   5. the moment of the distributed load about the IP centroid (eq. 17 and 20, integrated in
-//      closed form per piece), which fixes the line of action; the contact point pg is the foot
-//      of the perpendicular from the IP centroid to that line (§3.2.4).
+//   3. the integral of the potential difference over the IP's boundary (eq. 11, 16-20) and the
+//      contact point pg on the resultant's line of action (§3.2.4); kernel/potential_integral.hpp
 //
 // The combinatorics (verdict, IP vertices, which edge each IP edge lies on) follow the policy's
-// predicates. Under Float and Filtered the constructions are double; under Exact the IP
-// vertices, demarcation parameters, integrals and moments are GMP rationals (edge lengths, the
-// only irrational quantity, at 256 bits) and each output number is rounded once.
+// predicates. Under Float and Filtered the constructions are double; under Exact they are
+// exact rationals (edge lengths, the only irrational quantity, at 256 bits) and each output
+// number is rounded once.
 //
 // Units: lengths m, kn Pa (force per unit thickness per unit length per unit penetration
 // depth, divided by H: phi = kn d / H is a pressure), forces N per metre of thickness.
@@ -31,12 +25,12 @@
 
 #include "rockcontact/kernel/2d/convex_polygon.hpp"
 #include "rockcontact/kernel/2d/demarcation.hpp"
-#include "rockcontact/kernel/2d/detail/potential_impl.hpp"
 #include "rockcontact/kernel/2d/entrance_block.hpp"
 #include "rockcontact/kernel/2d/intersection_polygon.hpp"
-#include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
+#include "rockcontact/kernel/2d/potential_integral.hpp"
 #include "rockcontact/kernel/2d/tolerances.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace rockcontact::contact {
 
@@ -75,7 +69,7 @@ struct PairResult {
 // Scratch space reused across pairs: no allocation once it has grown to the largest pair.
 struct PairWorkspace {
   kernel::ClipWorkspace clip;
-  kernel::detail::ForceScratch<double> force;
+  kernel::PotentialWorkspace force;
 };
 
 // Throws std::invalid_argument when params are not finite and positive (kn, H).

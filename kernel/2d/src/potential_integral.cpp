@@ -1,0 +1,190 @@
+#include "rockcontact/kernel/2d/potential_integral.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <type_traits>
+
+#include "rockcontact/kernel/2d/crossing_point.hpp"
+#include "rockcontact/kernel/2d/detail/potential_impl.hpp"
+#include "rockcontact/kernel/core/detail/exact_number.hpp"
+
+namespace rockcontact::kernel {
+namespace {
+
+namespace kd = detail;
+
+template <class FT>
+using Pt = kd::PointT<FT>;
+
+// An IP vertex's coordinates: exact rationals under Exact, else the Policy's double crossing
+// (under Filtered certified to ~2^-40 of the edge, crossing_point.hpp).
+template <NumberPolicy Policy, class FT>
+Pt<FT> vertex_point(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpVertex& v) {
+  switch (v.kind) {
+    case IpVertex::Kind::cp_vertex: return kd::lift<FT>(cp[v.cp]);
+    case IpVertex::Kind::tp_vertex: return kd::lift<FT>(tp[v.tp]);
+    case IpVertex::Kind::crossing: break;
+  }
+  const Point2 &p = cp[v.cp], &q = cp[cp.next(v.cp)], &t0 = tp[v.tp], &t1 = tp[tp.next(v.tp)];
+  if constexpr (std::is_same_v<FT, double>) {
+    return kd::lift<FT>(construct_crossing_point<Policy>(p, q, t0, t1));
+  } else {
+    return kd::construct_crossing<FT>(p, q, t0, t1);
+  }
+}
+
+// The demarcation parameters of `poly` on segment p -> q, appended to t.
+template <NumberPolicy Policy, class FT>
+void add_demarcation(const ConvexPolygon& poly, const Pt<FT>& p, const Pt<FT>& q,
+                     kd::LinearPieces<FT>& distance, const PotentialParams& params,
+                     std::vector<FT>& t) {
+  if (params.demarcation == Demarcation::exact) {
+    kd::envelope_breakpoints<Policy>(distance, t);
+  } else {
+    kd::paper_breakpoints(poly, p, q, params.small_edge_length, t);
+  }
+}
+
+// Integral terms of one IP edge p -> q (eq. 16-18): with g(t) = d_CP(t) - d_TP(t) (the
+// potentials divided by kn/H), returns G = ∫0^1 g dt and the first moment
+// m = ∫0^1 g(t) (p(t) - c) dt about c. g is linear between consecutive parameters, so the
+// trapezoid rule for G and the closed form
+//   ∫ g p dt over [ta, tb] = (tb - ta) [pa (2 ga + gb) + pb (ga + 2 gb)] / 6
+// for m are exact.
+template <class FT>
+struct EdgeIntegral {
+  FT G;
+  Pt<FT> m;
+};
+
+template <NumberPolicy Policy, class FT>
+EdgeIntegral<FT> integrate_edge(const ConvexPolygon& cp, const ConvexPolygon& tp, const IpEdge& edge,
+                                const Pt<FT>& p, const Pt<FT>& q, const Pt<FT>& c,
+                                const PotentialParams& params, kd::ForceScratch<FT>& s) {
+  // On its own boundary a polygon's potential is zero (seed 000 §3.2.3 steps 2-3).
+  const bool cp_zero = edge.on == IpEdge::On::cp_edge;
+  const bool tp_zero = edge.on == IpEdge::On::tp_edge;
+  s.t.clear();
+  s.t.push_back(FT(0));
+  s.t.push_back(FT(1));
+  if (!cp_zero) {
+    kd::edge_distance_functions(cp, p, q, s.cp_distance);
+    add_demarcation<Policy>(cp, p, q, s.cp_distance, params, s.t);
+  }
+  if (!tp_zero) {
+    kd::edge_distance_functions(tp, p, q, s.tp_distance);
+    add_demarcation<Policy>(tp, p, q, s.tp_distance, params, s.t);
+  }
+  std::sort(s.t.begin(), s.t.end());
+  s.t.erase(std::unique(s.t.begin(), s.t.end()), s.t.end());
+  std::erase_if(s.t, [](const FT& x) { return x < FT(0) || x > FT(1); });
+
+  // Every IP point lies in both polygons, so each exit distance is >= 0. In double a
+  // near-parallel crossing, correct to a few ulps across its edge, may slide along it out of
+  // the other polygon; there the envelope is negative and would flip the sign of a sliver's
+  // force. Clamping at 0 keeps the sliver's force at its true, rounding-sized, magnitude.
+  // (In exact arithmetic the points are inside and the clamp never acts.)
+  const auto inside = [](const FT& d) { return d < FT(0) ? FT(0) : d; };
+  const auto g = [&](const FT& t) {
+    FT value(0);
+    if (!cp_zero) value += inside(s.cp_distance.at(t));
+    if (!tp_zero) value -= inside(s.tp_distance.at(t));
+    return value;
+  };
+  const FT dx = q.x - p.x, dy = q.y - p.y;
+  const FT px = p.x - c.x, py = p.y - c.y;
+  EdgeIntegral<FT> out{FT(0), {FT(0), FT(0)}};
+  FT ta = s.t[0], ga = g(ta);
+  for (std::size_t k = 1; k < s.t.size(); ++k) {
+    const FT& tb = s.t[k];
+    const FT gb = g(tb);
+    const FT h = tb - ta;
+    out.G += h * (ga + gb) / FT(2);
+    // (p(t) - c) = (p - c) + t d, so pa - c, pb - c are linear in ta, tb.
+    const FT wa = FT(2) * ga + gb, wb = ga + FT(2) * gb;
+    out.m.x += h * ((px + ta * dx) * wa + (px + tb * dx) * wb) / FT(6);
+    out.m.y += h * ((py + ta * dy) * wa + (py + tb * dy) * wb) / FT(6);
+    ta = tb;
+    ga = gb;
+  }
+  return out;
+}
+
+// Force, area and contact point from the symbolic IP, all in FT, each rounded once.
+template <NumberPolicy Policy, class FT>
+PotentialResultant integrate_force(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                                   const IntersectionPolygon& ip, const PotentialParams& params,
+                                   kd::ForceScratch<FT>& scratch, std::vector<Point2>& out_ip) {
+  using Ops = kd::NumberOps<FT>;
+  PotentialResultant out;
+  std::vector<Pt<FT>>& v = scratch.vertices;
+  v.clear();
+  for (const IpVertex& iv : ip.vertices) v.push_back(vertex_point<Policy, FT>(cp, tp, iv));
+  const kd::AreaCentroid<FT> ac = kd::area_centroid<FT>(v);
+  const Pt<FT>& c = ac.centroid;
+
+  // f = (kn/H) Σ_edges G_e (dy, -dx): (dy, -dx) = n L is the outward normal times the length
+  // of a CCW edge (eq. 11, 18). The moment about c is Σ m_e x (dy, -dx) (eq. 17, 20).
+  FT fx(0), fy(0), moment(0), magnitude(0);
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const Pt<FT>& p = v[k];
+    const Pt<FT>& q = v[k + 1 == v.size() ? 0 : k + 1];
+    const EdgeIntegral<FT> e = integrate_edge<Policy>(cp, tp, ip.edges[k], p, q, c, params, scratch);
+    const FT nx = q.y - p.y, ny = p.x - q.x;
+    fx += e.G * nx;
+    fy += e.G * ny;
+    moment += kd::cross(e.m.x, e.m.y, nx, ny);
+    magnitude += Ops::abs(e.G) * (Ops::abs(nx) + Ops::abs(ny));
+  }
+  const FT scale = Ops::from(params.kn) / Ops::from(params.H);
+  out.area = Ops::to_double(ac.area);
+  out_ip.clear();
+  for (const auto& p : v) out_ip.push_back(kd::round(p));
+  out.force = {Ops::to_double(scale * fx), Ops::to_double(scale * fy)};
+
+  // pg = c + lambda (-fy, fx) with lambda = -M / |f|^2 puts the resultant on its line of action
+  // and is the foot of the perpendicular from c (§3.2.4). In double a resultant that is pure
+  // rounding noise of its own sum (opposite pushes cancelling exactly in exact arithmetic) has
+  // no line of action: below 64 u times the sum of magnitudes it is reported without a point.
+  const FT f2 = fx * fx + fy * fy;
+  FT noise(0);
+  if constexpr (std::is_same_v<FT, double>) noise = 64.0 * 0x1p-53 * magnitude;
+  if (f2 == FT(0) || f2 <= noise * noise) return out;
+  const FT lambda = -moment / f2;
+  out.point = kd::round(Pt<FT>{FT(c.x - lambda * fy), FT(c.y + lambda * fx)});
+  return out;
+}
+
+}  // namespace
+
+PotentialWorkspace::PotentialWorkspace() : scratch_(std::make_unique<detail::ForceScratch<double>>()) {}
+PotentialWorkspace::~PotentialWorkspace() = default;
+PotentialWorkspace::PotentialWorkspace(const PotentialWorkspace&) : PotentialWorkspace() {}
+PotentialWorkspace& PotentialWorkspace::operator=(const PotentialWorkspace&) { return *this; }
+PotentialWorkspace::PotentialWorkspace(PotentialWorkspace&&) noexcept = default;
+PotentialWorkspace& PotentialWorkspace::operator=(PotentialWorkspace&&) noexcept = default;
+
+template <NumberPolicy Policy>
+PotentialResultant integrate_potential(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                                       const IntersectionPolygon& features,
+                                       const PotentialParams& params,
+                                       PotentialWorkspace& workspace, std::vector<Point2>& ip) {
+  if constexpr (Policy::kind == PolicyKind::exact) {
+    kd::ForceScratch<mpq_class> scratch;
+    return integrate_force<Policy>(cp, tp, features, params, scratch, ip);
+  } else {
+    return integrate_force<Policy>(cp, tp, features, params, workspace.scratch(), ip);
+  }
+}
+
+#define ROCKCONTACT_INSTANTIATE(P)                                                           \
+  template PotentialResultant integrate_potential<P>(                                        \
+      const ConvexPolygon&, const ConvexPolygon&, const IntersectionPolygon&,                \
+      const PotentialParams&, PotentialWorkspace&, std::vector<Point2>&);
+ROCKCONTACT_INSTANTIATE(Float)
+ROCKCONTACT_INSTANTIATE(Filtered)
+ROCKCONTACT_INSTANTIATE(Exact)
+#undef ROCKCONTACT_INSTANTIATE
+
+}  // namespace rockcontact::kernel
