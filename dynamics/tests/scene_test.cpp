@@ -208,31 +208,6 @@ BOOST_AUTO_TEST_CASE(inscribed_H_is_the_smallest_inscribed_radius) {
   BOOST_TEST(scene.law.normal.H == hand, boost::test_tools::tolerance(1e-14));
 }
 
-// Closed forms: a 3-4-5 right triangle has r = (3 + 4 - 5) / 2 = 1; a w x h rectangle
-// min(w, h) / 2 (the optimum is not unique: any centre on the mid-line); a regular hexagon of
-// side s has s sqrt(3) / 2. The same shapes 1e6 m from the origin give the same radii to the
-// rounding of their coordinates (1e6 has ulp 1.2e-10, hence 1e-9 relative).
-BOOST_AUTO_TEST_CASE(inscribed_radius_matches_closed_forms) {
-  const auto shifted = [](std::vector<kernel::Point2> polygon, double dx, double dy) {
-    for (auto& p : polygon) p = {p.x + dx, p.y + dy};
-    return polygon;
-  };
-  const std::vector<kernel::Point2> triangle{{0, 0}, {4, 0}, {0, 3}};
-  const std::vector<kernel::Point2> rectangle{{0, 0}, {5, 0}, {5, 0.1}, {0, 0.1}};
-  std::vector<kernel::Point2> hexagon;
-  for (int k = 0; k < 6; ++k) {
-    const double angle = std::numbers::pi / 3.0 * k;
-    hexagon.push_back({2.0 * std::cos(angle), 2.0 * std::sin(angle)});
-  }
-  BOOST_TEST(dyn::inscribed_radius(triangle) == 1.0, boost::test_tools::tolerance(1e-14));
-  BOOST_TEST(dyn::inscribed_radius(rectangle) == 0.05, boost::test_tools::tolerance(1e-14));
-  BOOST_TEST(dyn::inscribed_radius(hexagon) == std::sqrt(3.0), boost::test_tools::tolerance(1e-14));
-  BOOST_TEST(dyn::inscribed_radius(shifted(triangle, 1e6, -1e6)) == 1.0,
-             boost::test_tools::tolerance(1e-9));
-  BOOST_TEST(dyn::inscribed_radius(shifted(rectangle, -1e6, 1e6)) == 0.05,
-             boost::test_tools::tolerance(1e-9));
-}
-
 BOOST_AUTO_TEST_CASE(step_count_rounds_up_but_not_for_decimal_noise) {
   dyn::Scene scene;
   scene.params.dt = 1e-4;

@@ -119,47 +119,4 @@ double perimeter(std::span<const Point2> vertices) {
   return sum;
 }
 
-namespace {
-
-// Is the polygon shrunk by r non-empty? Clips the polygon by each inward-shifted edge line
-// (Sutherland-Hodgman; the region stays convex).
-bool shrunk_is_nonempty(std::span<const Point2> vertices, double r) {
-  std::vector<Point2> region(vertices.begin(), vertices.end()), next;
-  for (std::size_t i = 0; i < vertices.size() && !region.empty(); ++i) {
-    const Point2& a = vertices[i];
-    const Point2& b = vertices[i + 1 == vertices.size() ? 0 : i + 1];
-    const double length = std::hypot(b.x - a.x, b.y - a.y);
-    const double nx = -(b.y - a.y) / length, ny = (b.x - a.x) / length;  // inward unit normal
-    const auto inside = [&](const Point2& p) { return nx * (p.x - a.x) + ny * (p.y - a.y) - r; };
-    next.clear();
-    for (std::size_t k = 0; k < region.size(); ++k) {
-      const Point2& p = region[k];
-      const Point2& q = region[k + 1 == region.size() ? 0 : k + 1];
-      const double sp = inside(p), sq = inside(q);
-      if (sp >= 0.0) next.push_back(p);
-      if ((sp >= 0.0) != (sq >= 0.0)) {
-        const double t = sp / (sp - sq);
-        next.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
-      }
-    }
-    region.swap(next);
-  }
-  return !region.empty();
-}
-
-}  // namespace
-
-double inradius(std::span<const Point2> vertices) {
-  // Every edge line is at least r from the incentre, so S = Σ L_i h_i / 2 >= P r / 2:
-  // 2 S / P bounds the inradius from above.
-  std::vector<Point2> scratch;
-  const double area = central_moments(vertices, scratch).area;
-  double lo = 0.0, hi = 2.0 * area / perimeter(vertices);
-  while (hi - lo > 1e-9 * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (shrunk_is_nonempty(vertices, mid) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 }  // namespace rockcontact::dynamics::detail

@@ -80,11 +80,6 @@ double max_vertex_compliance(std::span<const Point2> vertices, const CentralMome
 // (K, M) on (r0, ex, ey, gxy), K = S E on the strain DOFs.
 double elastic_omega_squared(const CentralMoments& m, double mass, const Eigen::Matrix3d& elasticity);
 
-// Radius of the largest circle inside a convex CCW polygon (m), by bisection on the radius:
-// the polygon shrunk by r (every edge moved inward by r) is non-empty iff r <= inradius. Relative
-// accuracy 1e-9 (it only sets a stability threshold).
-double inradius(std::span<const Point2> vertices);
-
 double perimeter(std::span<const Point2> vertices);  // m
 
 }  // namespace rockcontact::dynamics::detail

@@ -484,7 +484,7 @@ void Dda2d::Impl::add_block(const BlockSpec& spec) {
   b.initial_centroid = m.centroid;
   b.inradius = std::numeric_limits<double>::infinity();
   for (const kernel::ConvexPolygon& part : b.parts.polygons) {
-    b.inradius = std::min(b.inradius, detail::inradius(part.vertices()));
+    b.inradius = std::min(b.inradius, kernel::inscribed_radius(part.vertices()));
   }
   b.perimeter = detail::perimeter(s.vertices);
   boxes.emplace_back();

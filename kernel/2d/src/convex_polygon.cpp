@@ -147,4 +147,55 @@ void ConvexPolygon::assign(std::span<const Point2> vertices, VertexOrder order) 
   *this = make(name_, std::vector<Point2>(vertices.begin(), vertices.end()), order);
 }
 
+double inscribed_radius(std::span<const Point2> polygon) {
+  // Edge line k in a frame at the first vertex (no digits lost far from the origin): the
+  // distance from p to it, positive inside, is c_k - n_k . p with n_k the outward unit normal.
+  struct EdgeLine {
+    double nx, ny, c;
+  };
+  const std::size_t n = polygon.size();
+  const Point2 origin = polygon[0];
+  std::vector<EdgeLine> lines;
+  lines.reserve(n);
+  double size = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double ax = polygon[k].x - origin.x, ay = polygon[k].y - origin.y;
+    const double ex = polygon[(k + 1) % n].x - polygon[k].x;
+    const double ey = polygon[(k + 1) % n].y - polygon[k].y;
+    const double length = std::hypot(ex, ey);
+    const EdgeLine line{ey / length, -ex / length, (ey * ax - ex * ay) / length};
+    lines.push_back(line);
+    size = std::max(size, std::hypot(ax, ay));
+  }
+  // A candidate centre may miss a constraint by the rounding of its 3x3 solve: allow 1e-12 of
+  // the polygon's size (the solve is well conditioned: distinct unit normals of a strictly
+  // convex polygon are never collinear points of the unit circle, so the determinant is not 0).
+  const double slack = 1e-12 * size;
+  double best = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const EdgeLine& a = lines[i];
+        const EdgeLine& b = lines[j];
+        const EdgeLine& c = lines[k];
+        // n . p + r = c for the three lines, by Cramer's rule.
+        const double det =
+            a.nx * (b.ny - c.ny) - a.ny * (b.nx - c.nx) + (b.nx * c.ny - c.nx * b.ny);
+        if (det == 0.0) continue;
+        const double x =
+            (a.c * (b.ny - c.ny) - a.ny * (b.c - c.c) + (b.c * c.ny - c.c * b.ny)) / det;
+        const double y =
+            (a.nx * (b.c - c.c) - a.c * (b.nx - c.nx) + (b.nx * c.c - c.nx * b.c)) / det;
+        const double r = a.c - a.nx * x - a.ny * y;
+        if (!(r > best)) continue;
+        const bool inside = std::all_of(lines.begin(), lines.end(), [&](const EdgeLine& l) {
+          return l.c - l.nx * x - l.ny * y >= r - slack;
+        });
+        if (inside) best = r;
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace rockcontact::kernel

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <string>
@@ -262,4 +263,37 @@ BOOST_AUTO_TEST_CASE(nearly_collinear_vertex_follows_exact_orientation) {
   BOOST_TEST(accepted > 0);
   BOOST_TEST(reflex > 0);
   BOOST_TEST(collinear > 0);
+}
+
+// Closed forms: a 3-4-5 right triangle has r = (3 + 4 - 5) / 2 = 1; a w x h rectangle
+// min(w, h) / 2 (the optimum is not unique: any centre on the mid-line); a regular hexagon of
+// side s has s sqrt(3) / 2. The same shapes 1e6 m from the origin give the same radii to the
+// rounding of their coordinates (1e6 has ulp 1.2e-10, hence 1e-9 relative).
+BOOST_AUTO_TEST_CASE(inscribed_radius_matches_closed_forms) {
+  const auto shifted = [](std::vector<Point2> polygon, double dx, double dy) {
+    for (auto& p : polygon) p = {p.x + dx, p.y + dy};
+    return polygon;
+  };
+  const std::vector<Point2> triangle{{0, 0}, {4, 0}, {0, 3}};
+  const std::vector<Point2> rectangle{{0, 0}, {5, 0}, {5, 0.1}, {0, 0.1}};
+  std::vector<Point2> hexagon;
+  for (int k = 0; k < 6; ++k) {
+    const double angle = std::numbers::pi / 3.0 * k;
+    hexagon.push_back({2.0 * std::cos(angle), 2.0 * std::sin(angle)});
+  }
+  BOOST_TEST(rk::inscribed_radius(triangle) == 1.0, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(rk::inscribed_radius(rectangle) == 0.05, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(rk::inscribed_radius(hexagon) == std::sqrt(3.0), boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(rk::inscribed_radius(shifted(triangle, 1e6, -1e6)) == 1.0,
+             boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(rk::inscribed_radius(shifted(rectangle, -1e6, 1e6)) == 0.05,
+             boost::test_tools::tolerance(1e-9));
+  // A 1 x 0.01 sliver turned by 30°: half its short side.
+  const double c = std::cos(std::numbers::pi / 6), s = std::sin(std::numbers::pi / 6);
+  std::vector<Point2> sliver;
+  for (const Point2& p : std::vector<Point2>{{0, 0}, {1, 0}, {1, 0.01}, {0, 0.01}}) {
+    sliver.push_back({c * p.x - s * p.y, s * p.x + c * p.y});
+  }
+  BOOST_TEST(rk::inscribed_radius(sliver) == 0.005,
+             boost::test_tools::tolerance(1e-12));
 }

@@ -134,13 +134,7 @@ std::size_t step_count(const Scene& scene);
 // Mean length of all edges of all blocks, m.
 double mean_edge_length(std::span<const BlockSpec> blocks);
 
-// Radius of the largest circle inside a strictly convex CCW polygon, m. The centre (x, y) and
-// radius r maximise r subject to dist(p, edge line k) >= r for every edge k, a linear program in
-// (x, y, r) whose optimum sits where three constraints are tight: every triple of edge lines is
-// solved and the largest feasible r kept (O(n^4), for the few vertices of a block).
-double inscribed_radius(std::span<const kernel::Point2> polygon);
-
-// min over blocks of inscribed_radius, m.
+// min over blocks of the largest kernel::inscribed_radius of their convex parts, m.
 double smallest_inscribed_radius(std::span<const BlockSpec> blocks);
 
 // Throws InputError ("<source>: <path>: ...") for anything the format above does not allow.
