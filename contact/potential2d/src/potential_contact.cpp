@@ -25,10 +25,13 @@ void check_params(const PotentialContactParams& params) {
   }
 }
 
+namespace {
+
+// evaluate_pair without the check of the parameters (the callers' business).
 template <kernel::NumberPolicy Policy>
-void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
-                   const PotentialContactParams& params, PairWorkspace& workspace, PairResult& out) {
-  check_params(params);
+void evaluate_checked(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                      const PotentialContactParams& params, PairWorkspace& workspace,
+                      PairResult& out) {
   const kernel::PredicateCounters before = kernel::predicate_counters();
   out.status = kernel::classify_overlap<Policy>(cp, tp);
   out.ip.clear();
@@ -54,13 +57,38 @@ void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
   out.fallbacks = spent.total_fallbacks();
 }
 
+}  // namespace
+
+template <kernel::NumberPolicy Policy>
+void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                   const PotentialContactParams& params, PairWorkspace& workspace, PairResult& out) {
+  check_params(params);
+  evaluate_checked<Policy>(cp, tp, params, workspace, out);
+}
+
+void PotentialContactMethod::evaluate(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                                      const PotentialContactParams& params,
+                                      PairWorkspace& workspace, PairResult& out) const {
+  kernel::with_policy(policy_, [&](auto p) {
+    evaluate_checked<decltype(p)>(cp, tp, params, workspace, out);
+  });
+}
+
+double PotentialContactMethod::penetration_depth(const ConvexPolygon& cp, const ConvexPolygon& tp) {
+  return kernel::compute_penetration_depth<kernel::Filtered>(cp, tp);
+}
+
+double PotentialContactMethod::separation(const ConvexPolygon& cp, const ConvexPolygon& tp) {
+  const kernel::EntranceBlock e = kernel::compute_entrance_block<kernel::Filtered>(cp, tp);
+  return e.status == Overlap::separate ? e.distance : 0.0;
+}
+
 PairResult evaluate_pair(kernel::PolicyKind policy, const ConvexPolygon& cp, const ConvexPolygon& tp,
                          const PotentialContactParams& params) {
+  check_params(params);
   PairResult result;
   PairWorkspace workspace;
-  kernel::with_policy(policy, [&](auto p) {
-    evaluate_pair<decltype(p)>(cp, tp, params, workspace, result);
-  });
+  PotentialContactMethod(policy).evaluate(cp, tp, params, workspace, result);
   return result;
 }
 

@@ -90,6 +90,7 @@ void check_params(const ContactLaw& law, const DdaParams& params) {
     throw std::invalid_argument("dda2d: contact H must be finite and > 0 (m), got " +
                                 number(law.normal.H));
   }
+  contact::check_params(law.normal);  // the rest of the normal law (small_edge_fraction)
   if (law.friction) contact::check_friction_law(*law.friction);
   if (!(params.equilibrium_tolerance > 0.0 && params.equilibrium_tolerance < 1.0)) {
     throw std::invalid_argument("dda2d: equilibrium_tolerance must be in (0, 1), got " +
@@ -270,14 +271,11 @@ struct Dda2d::Impl {
   void refresh(std::size_t i);
   // Forces and accelerations at the current instant.
   void evaluate_forces();
-  template <kernel::NumberPolicy Policy>
   void evaluate_contacts();
   const std::vector<BlockPair>& candidate_pairs();
   void gather_candidates(const std::vector<BlockPair>& list);
   void resolve_groups(const std::vector<BlockSpec>& specs);
-  template <kernel::NumberPolicy Policy>
   void measure_candidates();
-  template <kernel::NumberPolicy Policy>
   void measure(PartContact& c, PairScratch& mine) const;
   void record_contact(const PartContact& m);
   std::size_t carry_friction(const PartPair& parts);
@@ -322,6 +320,7 @@ struct Dda2d::Impl {
   std::string at_step() const;
 
   ContactLaw law;
+  contact::PotentialContactMethod method;  // the policy, chosen once
   DdaParams params;
   std::vector<PairLaw> laws;              // laws[0]: the defaults; then one per interface
   std::vector<std::size_t> law_of_groups;  // groups² table of indices into laws
@@ -407,7 +406,7 @@ class CountInto {
 
 Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParams dda_params,
                   const Snapshot* from)
-    : law(std::move(contact_law)), params(dda_params) {
+    : law(std::move(contact_law)), method(law.policy), params(dda_params) {
   check_params(law, params);
   thread_count = params.threads == 0 ? omp_get_max_threads() : static_cast<int>(params.threads);
   thread_scratch.resize(static_cast<std::size_t>(thread_count));
@@ -603,7 +602,7 @@ void Dda2d::Impl::evaluate_forces() {
     bodies[i].contact_force = {};
     bodies[i].dashpot_force = {};
   });
-  kernel::with_policy(law.policy, [&](auto policy) { evaluate_contacts<decltype(policy)>(); });
+  evaluate_contacts();
   for_each_movable([this](std::size_t i) {
     Body& b = bodies[i];
     const BlockState& s = states[i];
@@ -629,10 +628,9 @@ const std::vector<BlockPair>& Dda2d::Impl::candidate_pairs() {
   return broad_phase.pairs();
 }
 
-template <kernel::NumberPolicy Policy>
 void Dda2d::Impl::evaluate_contacts() {
   gather_candidates(candidate_pairs());
-  measure_candidates<Policy>();
+  measure_candidates();
   contacts.clear();
   friction_of.clear();
   friction.swap(previous_friction);
@@ -693,7 +691,6 @@ std::size_t Dda2d::Impl::carry_friction(const PartPair& parts) {
 // serial pass that follows sees the same numbers in the same order for any thread count.
 // Predicate counters are thread-local: the workers' share is added to `counters` here, the
 // calling thread's by the CountInto of step().
-template <kernel::NumberPolicy Policy>
 void Dda2d::Impl::measure_candidates() {
   const auto count = static_cast<std::ptrdiff_t>(candidates.size());
   const int threads = count >= parallel_threshold ? thread_count : 1;
@@ -704,7 +701,7 @@ void Dda2d::Impl::measure_candidates() {
     const kernel::PredicateCounters before = kernel::predicate_counters();
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
-      measure<Policy>(candidates[static_cast<std::size_t>(k)], mine);
+      measure(candidates[static_cast<std::size_t>(k)], mine);
     }
     count_worker(before);
   }
@@ -720,13 +717,12 @@ void Dda2d::Impl::count_worker(const kernel::PredicateCounters& before) {
   add_counters(counters, spent);
 }
 
-template <kernel::NumberPolicy Policy>
 void Dda2d::Impl::measure(PartContact& c, PairScratch& mine) const {
   const auto [i, j, p, q] = c.parts;
   const kernel::ConvexPolygon& cp = bodies[i].parts.polygons[p];
   const kernel::ConvexPolygon& tp = bodies[j].parts.polygons[q];
   contact::PairResult& r = mine.result;
-  contact::evaluate_pair<Policy>(cp, tp, laws[law_index(i, j)].normal, mine.workspace, r);
+  method.evaluate(cp, tp, laws[law_index(i, j)].normal, mine.workspace, r);
   c.touching = r.status == kernel::Overlap::overlap && r.point.has_value();
   if (!c.touching) return;
   c.force = r.force;
@@ -734,7 +730,7 @@ void Dda2d::Impl::measure(PartContact& c, PairScratch& mine) const {
   c.ip_size = r.ip.size();
   c.area = r.area;
   c.length = 0.5 * detail::perimeter(r.ip);
-  c.depth = kernel::compute_penetration_depth<kernel::Filtered>(cp, tp);
+  c.depth = contact::PotentialContactMethod::penetration_depth(cp, tp);
 }
 
 // A measured contact: checked, given its friction force and applied to both blocks.
@@ -911,8 +907,7 @@ std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
     const double gap = resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter);
     for (const kernel::ConvexPolygon& a : bodies[i].parts.polygons) {
       for (const kernel::ConvexPolygon& b : bodies[j].parts.polygons) {
-        const kernel::EntranceBlock e = kernel::compute_entrance_block<kernel::Filtered>(a, b);
-        if (e.status == kernel::Overlap::separate && e.distance > gap) continue;
+        if (contact::PotentialContactMethod::separation(a, b) > gap) continue;
         adjacent[i].push_back(j);  // once per resting pair of parts
         adjacent[j].push_back(i);
       }

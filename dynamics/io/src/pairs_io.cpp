@@ -62,8 +62,8 @@ std::vector<PairSpec> read_pair_list(const JsonReader& reader, const json& value
 }
 
 // Evaluates one pair into `result`, or returns the kernel's message for an invalid polygon.
-template <kernel::NumberPolicy Policy>
-std::optional<std::string> evaluate(const PairSpec& spec, std::size_t index,
+std::optional<std::string> evaluate(const contact::PotentialContactMethod& method,
+                                    const PairSpec& spec, std::size_t index,
                                     const contact::PotentialContactParams& params,
                                     contact::PairWorkspace& workspace,
                                     contact::PairResult& result) {
@@ -74,7 +74,7 @@ std::optional<std::string> evaluate(const PairSpec& spec, std::size_t index,
         kernel::ConvexPolygon::make(name + ".cp" + id, spec.cp, kernel::VertexOrder::require_ccw);
     const auto tp =
         kernel::ConvexPolygon::make(name + ".tp" + id, spec.tp, kernel::VertexOrder::require_ccw);
-    contact::evaluate_pair<Policy>(cp, tp, params, workspace, result);
+    method.evaluate(cp, tp, params, workspace, result);
   } catch (const kernel::InvalidPolygon& e) {
     return std::string(e.what());
   }
@@ -97,8 +97,8 @@ ordered_json result_json(const std::string& id, const contact::PairResult& r) {
   return out;
 }
 
-template <kernel::NumberPolicy Policy>
-ordered_json run_all(const PairsInput& input, const contact::PotentialContactParams& params) {
+ordered_json run_all(const contact::PotentialContactMethod& method, const PairsInput& input,
+                     const contact::PotentialContactParams& params) {
   using clock = std::chrono::steady_clock;
   ordered_json results = ordered_json::array();
   contact::PairWorkspace workspace;
@@ -109,7 +109,7 @@ ordered_json run_all(const PairsInput& input, const contact::PotentialContactPar
   for (std::size_t i = 0; i < input.pairs.size(); ++i) {
     const PairSpec& spec = input.pairs[i];
     const auto start = clock::now();
-    const auto error = evaluate<Policy>(spec, i, params, workspace, result);
+    const auto error = evaluate(method, spec, i, params, workspace, result);
     elapsed += clock::now() - start;
     if (error) {
       results.push_back({{"id", spec.id}, {"status", "error"}, {"error", *error}});
@@ -168,8 +168,8 @@ ordered_json run_pairs(const PairsInput& input, const PairsOverrides& overrides)
   params.kn = input.kn;
   params.H = input.H;
   params.demarcation = overrides.demarcation.value_or(input.demarcation);
-  ordered_json body =
-      kernel::with_policy(policy, [&](auto tag) { return run_all<decltype(tag)>(input, params); });
+  contact::check_params(params);
+  ordered_json body = run_all(contact::PotentialContactMethod(policy), input, params);
   ordered_json out;
   out["policy"] = kernel::to_string(policy);
   out["demarcation"] = kernel::to_string(params.demarcation);

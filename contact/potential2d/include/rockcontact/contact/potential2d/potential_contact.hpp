@@ -81,4 +81,30 @@ void evaluate_pair(const ConvexPolygon& cp, const ConvexPolygon& tp,
 PairResult evaluate_pair(kernel::PolicyKind policy, const ConvexPolygon& cp, const ConvexPolygon& tp,
                          const PotentialContactParams& params = default_potential_contact_params());
 
+// The potential contact as a method a simulation or a tool holds: the number policy chosen
+// once, at run time, here, and every geometric query the engine needs of a pair of convex
+// parts behind it, so that the engine calls the contact layer only. Const and safe to share
+// between threads: each thread passes its own workspace.
+class PotentialContactMethod {
+ public:
+  explicit PotentialContactMethod(kernel::PolicyKind policy) : policy_(policy) {}
+  kernel::PolicyKind policy() const { return policy_; }
+
+  // evaluate_pair under the method's policy. The parameters are not checked here: the holder
+  // checks each set once, with check_params, before its first use.
+  void evaluate(const ConvexPolygon& cp, const ConvexPolygon& tp,
+                const PotentialContactParams& params, PairWorkspace& workspace,
+                PairResult& out) const;
+
+  // The minimum translation distance of cp and tp when they overlap, else 0 (m). Always by
+  // the filtered predicates: it is a monitor, not part of the force.
+  static double penetration_depth(const ConvexPolygon& cp, const ConvexPolygon& tp);
+
+  // The distance between cp and tp when they are apart, else 0 (m); filtered predicates.
+  static double separation(const ConvexPolygon& cp, const ConvexPolygon& tp);
+
+ private:
+  kernel::PolicyKind policy_;
+};
+
 }  // namespace rockcontact::contact
