@@ -11,7 +11,8 @@ namespace rockcontact::kernel {
 namespace detail {
 
 std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point2& q, const Point2& t0,
-                                                    const Point2& t1, double tolerance) {
+                                                    const Point2& t1, double tolerance,
+                                                    const Point2& origin) {
   constexpr double e = (4.0 + 32.0 * unit_roundoff) * unit_roundoff;  // ccwerrboundA + u: see the header
   const double lx = q.x - p.x, ly = q.y - p.y;
   const double dx = t1.x - t0.x, dy = t1.y - t0.y;
@@ -27,37 +28,47 @@ std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point
   if (!std::isfinite(s) || !std::isfinite(ds) || !(ds <= tolerance)) return std::nullopt;
   // The exact s lies in [0, 1]; clamping s' there cannot move it further from s.
   s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
-  return CertifiedCrossing{{t0.x + s * dx, t0.y + s * dy}, ds};
+  return CertifiedCrossing{{(t0.x - origin.x) + s * dx, (t0.y - origin.y) + s * dy}, ds};
 }
 
 }  // namespace detail
 
 namespace {
 
-Point2 crossing_rounded_exactly(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
-  return detail::round(detail::construct_crossing<mpq_class>(p, q, t0, t1));
+Point2 crossing_rounded_exactly(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1,
+                                const Point2& origin) {
+  detail::PointT<mpq_class> x = detail::construct_crossing<mpq_class>(p, q, t0, t1);
+  x.x -= mpq_class(origin.x);
+  x.y -= mpq_class(origin.y);
+  return detail::round(x);
 }
 
 }  // namespace
 
 template <NumberPolicy Policy>
-Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
+Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1,
+                                const Point2& origin) {
   detail::count_call(PredicateKind::crossing_point);
   if constexpr (Policy::kind == PolicyKind::float_) {
-    return detail::round(detail::construct_crossing<double>(p, q, t0, t1));
+    const Point2 x = detail::round(detail::construct_crossing<double>(p, q, t0, t1));
+    return {x.x - origin.x, x.y - origin.y};
   } else if constexpr (Policy::kind == PolicyKind::filtered) {
-    if (const auto c = detail::crossing_in_double(p, q, t0, t1, crossing_parameter_tolerance)) {
+    if (const auto c = detail::crossing_in_double(p, q, t0, t1, crossing_parameter_tolerance, origin)) {
       return c->point;
     }
     detail::count_fallback(PredicateKind::crossing_point);
-    return crossing_rounded_exactly(p, q, t0, t1);
+    return crossing_rounded_exactly(p, q, t0, t1, origin);
   } else {
-    return crossing_rounded_exactly(p, q, t0, t1);
+    return crossing_rounded_exactly(p, q, t0, t1, origin);
   }
 }
 
-template Point2 construct_crossing_point<Float>(const Point2&, const Point2&, const Point2&, const Point2&);
-template Point2 construct_crossing_point<Filtered>(const Point2&, const Point2&, const Point2&, const Point2&);
-template Point2 construct_crossing_point<Exact>(const Point2&, const Point2&, const Point2&, const Point2&);
+#define ROCKCONTACT_INSTANTIATE(P)                                                         \
+  template Point2 construct_crossing_point<P>(const Point2&, const Point2&, const Point2&, \
+                                              const Point2&, const Point2&);
+ROCKCONTACT_INSTANTIATE(Float)
+ROCKCONTACT_INSTANTIATE(Filtered)
+ROCKCONTACT_INSTANTIATE(Exact)
+#undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -53,11 +53,15 @@ namespace rockcontact::kernel {
 // crossings of random pairs.
 inline constexpr double crossing_parameter_tolerance = 0x1p-40;
 
-// The crossing of line (p, q) with segment (t0, t1) under Policy, coordinates in metres.
-// Precondition: the lines are not parallel and the crossing lies on the segment (decided by
-// exact predicates).
+// The crossing of line (p, q) with segment (t0, t1) under Policy, coordinates in metres,
+// relative to `origin`: X - origin, computed as (t0 - origin) + s (t1 - t0), so that a frame
+// near the pair keeps the digits a crossing 10^6 m from the origin would lose (the bound below
+// holds with X_c replaced by X_c - origin_c, plus u |t0_c - origin_c| for the shift). Under
+// Exact, X - origin is exact and rounded once. Precondition: the lines are not parallel and
+// the crossing lies on the segment (decided by exact predicates on the given coordinates).
 template <NumberPolicy Policy>
-Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1);
+Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1,
+                                const Point2& origin = {0.0, 0.0});
 
 namespace detail {
 
@@ -68,7 +72,8 @@ struct CertifiedCrossing {
   double parameter_error;  // the certified bound ds on |s' - s|
 };
 std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point2& q, const Point2& t0,
-                                                    const Point2& t1, double tolerance);
+                                                    const Point2& t1, double tolerance,
+                                                    const Point2& origin = {0.0, 0.0});
 
 }  // namespace detail
 

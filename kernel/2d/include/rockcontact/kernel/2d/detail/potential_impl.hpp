@@ -39,24 +39,57 @@ struct LinearPieces {
   }
 };
 
-template <class FT>
-FT edge_length(const ConvexPolygon& poly, std::size_t k) {
+// The vertices of a convex polygon seen from `origin`: the polygon translated by -origin, each
+// coordinate difference rounded once (exact when the two are within a factor 2 of each other,
+// Sterbenz; else off by u times the difference, a rounding of the polygon's own size). The
+// double constructions of a pair run in such a frame, so that a pair 10^6 m from the origin
+// gets the force of the same pair at the origin. Edge vectors are still taken from the
+// polygon's own coordinates (edge_of): the translated vertices of a very short edge far from
+// the origin may round onto each other, its true vector never vanishes.
+struct TranslatedPolygon {
+  const ConvexPolygon& polygon;
+  Point2 origin;
+
+  Point2 operator[](std::size_t k) const { return local(polygon[k]); }
+  Point2 local(const Point2& p) const { return {p.x - origin.x, p.y - origin.y}; }
+  std::size_t size() const { return polygon.size(); }
+  std::size_t next(std::size_t k) const { return polygon.next(k); }
+  std::size_t prev(std::size_t k) const { return polygon.prev(k); }
+};
+
+// The functions below take a ConvexPolygon (global frame; the exact path) or a
+// TranslatedPolygon (`Poly`).
+inline const ConvexPolygon& global_polygon(const ConvexPolygon& poly) { return poly; }
+inline const ConvexPolygon& global_polygon(const TranslatedPolygon& poly) { return poly.polygon; }
+inline Point2 frame_origin(const ConvexPolygon&) { return {0.0, 0.0}; }
+inline Point2 frame_origin(const TranslatedPolygon& poly) { return poly.origin; }
+
+// Edge k's vector v_{k+1} - v_k, from the polygon's own coordinates.
+template <class FT, class Poly>
+PointT<FT> edge_of(const Poly& poly, std::size_t k) {
   using Ops = NumberOps<FT>;
-  const Point2 &p = poly[k], &q = poly[poly.next(k)];
-  const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
-  return Ops::sqrt(ex * ex + ey * ey);
+  const ConvexPolygon& g = global_polygon(poly);
+  const Point2 &p = g[k], &q = g[g.next(k)];
+  return {FT(Ops::from(q.x) - Ops::from(p.x)), FT(Ops::from(q.y) - Ops::from(p.y))};
 }
 
-template <class FT>
-void edge_distance_functions(const ConvexPolygon& poly, const PointT<FT>& a, const PointT<FT>& b,
+template <class FT, class Poly>
+FT edge_length(const Poly& poly, std::size_t k) {
+  const PointT<FT> e = edge_of<FT>(poly, k);
+  return NumberOps<FT>::sqrt(e.x * e.x + e.y * e.y);
+}
+
+template <class FT, class Poly>
+void edge_distance_functions(const Poly& poly, const PointT<FT>& a, const PointT<FT>& b,
                              LinearPieces<FT>& out) {
   using Ops = NumberOps<FT>;
   out.alpha.resize(poly.size());
   out.beta.resize(poly.size());
   const FT dx = b.x - a.x, dy = b.y - a.y;
   for (std::size_t k = 0; k < poly.size(); ++k) {
-    const Point2 &p = poly[k], &q = poly[poly.next(k)];
-    const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
+    const Point2 p = poly[k];
+    const PointT<FT> e = edge_of<FT>(poly, k);
+    const FT &ex = e.x, &ey = e.y;
     const FT len = Ops::sqrt(ex * ex + ey * ey);
     out.alpha[k] = cross(ex, ey, FT(a.x - Ops::from(p.x)), FT(a.y - Ops::from(p.y))) / len;
     out.beta[k] = cross(ex, ey, dx, dy) / len;
@@ -157,13 +190,11 @@ void envelope_breakpoints(LinearPieces<FT>& f, std::vector<FT>& out) {
 }
 
 // Inward unit normal of edge k (v_k -> v_{k+1}) of a CCW polygon.
-template <class FT>
-PointT<FT> inward_normal(const ConvexPolygon& poly, std::size_t k) {
-  using Ops = NumberOps<FT>;
-  const Point2 &p = poly[k], &q = poly[poly.next(k)];
-  const FT ex = Ops::from(q.x) - Ops::from(p.x), ey = Ops::from(q.y) - Ops::from(p.y);
-  const FT len = Ops::sqrt(ex * ex + ey * ey);
-  return {FT(-ey / len), FT(ex / len)};
+template <class FT, class Poly>
+PointT<FT> inward_normal(const Poly& poly, std::size_t k) {
+  const PointT<FT> e = edge_of<FT>(poly, k);
+  const FT len = NumberOps<FT>::sqrt(e.x * e.x + e.y * e.y);
+  return {FT(-e.y / len), FT(e.x / len)};
 }
 
 // A ray o + s r, 0 <= s <= s_max (s_max < 0: unbounded).
@@ -189,8 +220,8 @@ void add_crossing(const PointT<FT>& a, const PointT<FT>& d, const Ray<FT>& ray, 
 // crossings with the bisector ray of every node; an edge shorter than small_edge gets a
 // virtual node where the bisector rays of its two end nodes meet: those two rays stop there
 // and one ray continues, bisecting the lines of the two neighbouring edges.
-template <class FT>
-void paper_breakpoints(const ConvexPolygon& poly, const PointT<FT>& a, const PointT<FT>& b,
+template <class FT, class Poly>
+void paper_breakpoints(const Poly& poly, const PointT<FT>& a, const PointT<FT>& b,
                        double small_edge, std::vector<FT>& out) {
   const std::size_t n = poly.size();
   const PointT<FT> d{FT(b.x - a.x), FT(b.y - a.y)};
@@ -208,8 +239,8 @@ void paper_breakpoints(const ConvexPolygon& poly, const PointT<FT>& a, const Poi
   // Parameter along node k's bisector where it meets node (k+1)'s: the virtual node of edge k.
   const auto virtual_node_s = [&](std::size_t k) {
     const PointT<FT> r0 = bisector(k), r1 = bisector(poly.next(k));
-    const PointT<FT> p0 = lift<FT>(poly[k]), p1 = lift<FT>(poly[poly.next(k)]);
-    return FT(cross(FT(p1.x - p0.x), FT(p1.y - p0.y), r1.x, r1.y) / cross(r0.x, r0.y, r1.x, r1.y));
+    const PointT<FT> e = edge_of<FT>(poly, k);
+    return FT(cross(e.x, e.y, r1.x, r1.y) / cross(r0.x, r0.y, r1.x, r1.y));
   };
   for (std::size_t k = 0; k < n; ++k) {
     Ray<FT> ray{lift<FT>(poly[k]), bisector(k), FT(-1)};
