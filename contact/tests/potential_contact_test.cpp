@@ -431,10 +431,10 @@ BOOST_AUTO_TEST_CASE(contact2d_reference_data) {
 }
 
 // Far from the origin: the contact2d pairs moved by (10^6, -10^6) m (each coordinate rounded
-// once; Filtered and Exact see the same doubles). Filtered constructs in a frame at CP's first
-// vertex (potential_integral.hpp), so its force matches Exact's to the rounding of the pair's
-// own size: at most 1e-12 of the force (scaled as in contact2d_reference_data), the bound the
-// origin's pairs meet with a margin (the worst, a near-parallel pair, is 2.8e-13 at the origin
+// once; Filtered and Exact see the same doubles). Filtered constructs in a frame near the pair
+// (potential_integral.cpp), so its force matches Exact's to the rounding of the pair's own
+// size: at most 1e-12 of the force (scaled as in contact2d_reference_data), the bound the
+// origin's pairs meet with a margin (the worst, a near-parallel pair, is 4.2e-13 at the origin
 // and moved by (10^6, 10^6) m alike). In global coordinates the shoelace sums and the crossing
 // points kept the rounding of 10^6 m: up to 1e-7 of the force.
 BOOST_AUTO_TEST_CASE(filtered_force_far_from_the_origin_matches_exact) {

@@ -206,14 +206,6 @@ double mean_error_bound(const LinearModel& m, const std::vector<double>& b, std:
 // amplitude up to D_s, which moves the mean of the depth off D_s by about D_s² / L.
 double nonlinear_shift(double Ds, double L) { return Ds * Ds / L; }
 
-// A depth is the overlap of two blocks whose vertices sit at coordinates up to `scale` (m):
-// each step's force, hence the depth the motion settles about, is resolved only to the rounding
-// of those coordinates (the vertices moved by rounded increments, the IP's vertices and area
-// built from them), a few ulps of `scale`. Allowed: 16 u scale. It matters where the depth is
-// tiny: for the light block on the heavy one (2e-9 m against coordinates near 1 m) it is 7e-7
-// of the depth, which a change of the order of roundings in the force's construction moves.
-double coordinate_rounding(double scale) { return 16.0 * 0x1p-53 * scale; }
-
 double penetration_of(const Dda2d& sim, std::size_t a, std::size_t b) {
   for (const auto& c : sim.contacts())
     if ((c.cp == a && c.tp == b) || (c.cp == b && c.tp == a)) return c.penetration;
@@ -433,11 +425,9 @@ MassRatioRun mass_ratio(double ratio, bool heavy_on_top, double slow_periods) {
   r.steps = N;
   r.top_mean = top_sum / static_cast<double>(N);
   r.bottom_mean = low_sum / static_cast<double>(N);
-  const double scale = 2.0;  // m: the largest coordinate, the base's right end
   r.top_tolerance = mean_error_bound(model, b_top, N, r.dt) +
-                    nonlinear_shift(r.top_static, std::min(st, sl)) + coordinate_rounding(scale);
-  r.bottom_tolerance = mean_error_bound(model, b_low, N, r.dt) +
-                       nonlinear_shift(r.bottom_static, sl) + coordinate_rounding(scale);
+                    nonlinear_shift(r.top_static, std::min(st, sl));
+  r.bottom_tolerance = mean_error_bound(model, b_low, N, r.dt) + nonlinear_shift(r.bottom_static, sl);
   r.max_depth = sim.max_penetration();
   r.seconds = seconds_since(start);
   return r;

@@ -69,8 +69,7 @@ struct RestingRun {
   double static_depth = 0.0;     // m, analytic (header)
   double mean_depth = 0.0;       // m, time average over an integer number of lowest periods
   // m: what the modes leave in that average (linear model, exact for Verlet) plus D_s² / L
-  // for the law's -d² term (MassRatioRun adds the rounding of its coordinates, see
-  // coordinate_rounding in stiff_extreme.cpp)
+  // for the law's -d² term
   double mean_depth_tolerance = 0.0;
   double max_depth = 0.0;        // m, measured
   double max_depth_bound = 0.0;  // m, D_s + sum_k |c_k b.phi_k| of the discrete modal solution

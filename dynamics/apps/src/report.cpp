@@ -248,6 +248,10 @@ struct ConvergedReference {
 };
 constexpr double reference_refinement = 4.0;
 
+struct ReferenceFactors {
+  double dt, kn;  // of the scene's dt and kn
+};
+
 // A scene of the report: its file, its reference and how a run of it is measured.
 struct ReportScene {
   std::string name;       // as in `validate`
@@ -267,6 +271,12 @@ struct ReportScene {
 
   const Sweep& sweep(bool quick_run) const { return quick_run ? quick : full; }
   double window(bool quick_run) const { return quick_run ? quick_duration : duration; }
+  // The converged run's dt and kn factors (ConvergedReference).
+  ReferenceFactors reference_factors(bool quick_run) const {
+    const Sweep& s = sweep(quick_run);
+    return {*std::min_element(s.dt_factors.begin(), s.dt_factors.end()) / reference_refinement,
+            *std::max_element(s.kn_factors.begin(), s.kn_factors.end())};
+  }
 };
 
 // The centre of mass of the blocks cut from the scene's region (the §6.1 rock mass). A
@@ -454,24 +464,18 @@ ReportRun run_one(const ReportScene& entry, const Scene& base, bool quick,
 // The converged run of a scene that has no closed form (ConvergedReference).
 ReportRun reference_run(const ReportScene& entry, const Scene& base, bool quick,
                         Samples& trajectory) {
-  const Sweep& s = entry.sweep(quick);
-  const double dt_factor =
-      *std::min_element(s.dt_factors.begin(), s.dt_factors.end()) / reference_refinement;
-  const double kn_factor = *std::max_element(s.kn_factors.begin(), s.kn_factors.end());
-  return run_one(entry, base, quick, entry.converged->policy, kernel::Demarcation::exact,
-                 dt_factor, kn_factor, nullptr, &trajectory);
+  const ReferenceFactors f = entry.reference_factors(quick);
+  return run_one(entry, base, quick, entry.converged->policy, kernel::Demarcation::exact, f.dt,
+                 f.kn, nullptr, &trajectory);
 }
 
 // What a scene's errors are measured against, in one line: the formula, or the converged run
 // with its settings and what is compared.
 std::string reference_text(const ReportScene& entry, bool quick) {
   if (!entry.converged) return "analytic: " + entry.reference;
-  const Sweep& s = entry.sweep(quick);
-  const double dt_factor =
-      *std::min_element(s.dt_factors.begin(), s.dt_factors.end()) / reference_refinement;
-  const double kn_factor = *std::max_element(s.kn_factors.begin(), s.kn_factors.end());
+  const ReferenceFactors f = entry.reference_factors(quick);
   return "converged run (" + std::string(kernel::to_string(entry.converged->policy)) +
-         "/exact, dt ×" + factor_text(dt_factor) + ", kn ×" + factor_text(kn_factor) +
+         "/exact, dt ×" + factor_text(f.dt) + ", kn ×" + factor_text(f.kn) +
          ") on " + entry.reference;
 }
 

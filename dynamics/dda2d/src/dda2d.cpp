@@ -82,15 +82,7 @@ void check_params(const ContactLaw& law, const DdaParams& params) {
     throw std::invalid_argument("dda2d: mass_damping must be finite and >= 0 (1/s), got " +
                                 number(params.mass_damping));
   }
-  if (!finite(law.normal.kn) || !(law.normal.kn > 0.0)) {
-    throw std::invalid_argument("dda2d: contact kn must be finite and > 0 (Pa), got " +
-                                number(law.normal.kn));
-  }
-  if (!finite(law.normal.H) || !(law.normal.H > 0.0)) {
-    throw std::invalid_argument("dda2d: contact H must be finite and > 0 (m), got " +
-                                number(law.normal.H));
-  }
-  contact::check_params(law.normal);  // the rest of the normal law (small_edge_fraction)
+  contact::check_params(law.normal);  // kn, H, small_edge_fraction
   if (law.friction) contact::check_friction_law(*law.friction);
   if (!(params.equilibrium_tolerance > 0.0 && params.equilibrium_tolerance < 1.0)) {
     throw std::invalid_argument("dda2d: equilibrium_tolerance must be in (0, 1), got " +

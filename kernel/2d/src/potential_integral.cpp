@@ -3,6 +3,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 #include "rockcontact/kernel/2d/crossing_point.hpp"
@@ -159,6 +160,23 @@ PotentialResultant integrate_force(const Poly& cp, const Poly& tp,
   return out;
 }
 
+// The origin of a pair's construction frame: the point of a grid of spacing 2^k >= 4 x CP's
+// extent nearest CP's first vertex. A pair whose coordinates are within its own size of the
+// origin gets (0, 0), so nothing is translated and its constructions round as they always did;
+// a pair far away gets a round number near it, from which its coordinates differ by a few
+// times its size: exactly (Sterbenz) once the pair is farther out than it is large.
+Point2 frame_origin(const ConvexPolygon& cp) {
+  const Point2 first = cp[0];
+  double extent = 0.0;
+  for (const Point2& v : cp.vertices()) {
+    extent = std::max({extent, std::fabs(v.x - first.x), std::fabs(v.y - first.y)});
+  }
+  int exponent = 0;
+  std::frexp(4.0 * extent, &exponent);  // 4 extent < 2^exponent
+  const double spacing = std::ldexp(1.0, exponent);
+  return {std::nearbyint(first.x / spacing) * spacing, std::nearbyint(first.y / spacing) * spacing};
+}
+
 }  // namespace
 
 PotentialWorkspace::PotentialWorkspace() : scratch_(std::make_unique<detail::ForceScratch<double>>()) {}
@@ -177,10 +195,10 @@ PotentialResultant integrate_potential(const ConvexPolygon& cp, const ConvexPoly
     kd::ForceScratch<mpq_class> scratch;
     return integrate_force<Policy>(cp, tp, features, params, scratch, ip);
   } else {
-    // In double, in the frame of CP's first vertex: coordinates far from the origin would
-    // leave the shoelace sums and moments with the rounding of their magnitude, not of the
-    // pair's size (1e-7 of the force at 10^6 m on the contact2d pairs; 1e-13 in the frame).
-    const Point2 o = cp[0];
+    // In double, in a frame near the pair: coordinates far from the origin would leave the
+    // shoelace sums, moments and crossings with the rounding of their magnitude, not of the
+    // pair's size (1e-7 of the force at 10^6 m on the contact2d pairs; 4e-13 in the frame).
+    const Point2 o = frame_origin(cp);
     const kd::TranslatedPolygon local_cp{cp, o}, local_tp{tp, o};
     PotentialResultant r =
         integrate_force<Policy>(local_cp, local_tp, features, params, workspace.scratch(), ip);

@@ -50,8 +50,9 @@ struct TranslatedPolygon {
   const ConvexPolygon& polygon;
   Point2 origin;
 
-  Point2 operator[](std::size_t k) const { return local(polygon[k]); }
-  Point2 local(const Point2& p) const { return {p.x - origin.x, p.y - origin.y}; }
+  Point2 operator[](std::size_t k) const {
+    return {polygon[k].x - origin.x, polygon[k].y - origin.y};
+  }
   std::size_t size() const { return polygon.size(); }
   std::size_t next(std::size_t k) const { return polygon.next(k); }
   std::size_t prev(std::size_t k) const { return polygon.prev(k); }
