@@ -774,3 +774,19 @@ BOOST_AUTO_TEST_CASE(contact_method_is_evaluate_pair_under_its_policy) {
   BOOST_TEST(rc::PotentialContactMethod::penetration_depth(a, rectangle("c", 0.875, 1.875, 0, 1)) == 0.125);
   BOOST_TEST(rc::PotentialContactMethod::separation(a, rectangle("c", 0.875, 1.875, 0, 1)) == 0.0);
 }
+
+// Polygons whose extent is near double's range: CP's is 3e307, so the construction frame's
+// grid spacing, the power of two above 4 x 3e307 = 1.2e308, is 2^1024 = inf. The frame must
+// then leave the pair where it is. Before, the NaN origin (0 x inf) reached GMP on the exact
+// path of a crossing whose cross products overflow, and GMP raised SIGFPE (found by
+// fuzz_pair_kernel). The verdict is decided exactly whatever the magnitudes: overlap, and the
+// IP has the four vertices of the two squares' overlap.
+BOOST_AUTO_TEST_CASE(polygons_near_the_range_of_double_keep_a_finite_frame) {
+  const ConvexPolygon cp = rectangle("cp", -1.5e307, 1.5e307, -1.5e307, 1.5e307);
+  const ConvexPolygon tp = rectangle("tp", -1e307, 2e307, -1e307, 2e307);
+  for (const PolicyKind policy : {PolicyKind::float_, PolicyKind::filtered, PolicyKind::exact}) {
+    const rc::PairResult r = rc::evaluate_pair(policy, cp, tp, params(1e7, 1.0));
+    BOOST_TEST((r.status == Overlap::overlap), policy_name(policy));
+    BOOST_TEST(r.ip.size() == 4u, policy_name(policy));
+  }
+}

@@ -164,7 +164,8 @@ PotentialResultant integrate_force(const Poly& cp, const Poly& tp,
 // extent nearest CP's first vertex. A pair whose coordinates are within its own size of the
 // origin gets (0, 0), so nothing is translated and its constructions round as they always did;
 // a pair far away gets a round number near it, from which its coordinates differ by a few
-// times its size: exactly (Sterbenz) once the pair is farther out than it is large.
+// times its size: exactly (Sterbenz) once the pair is farther out than it is large. The origin
+// is always finite.
 Point2 frame_origin(const ConvexPolygon& cp) {
   const Point2 first = cp[0];
   double extent = 0.0;
@@ -174,7 +175,12 @@ Point2 frame_origin(const ConvexPolygon& cp) {
   int exponent = 0;
   std::frexp(4.0 * extent, &exponent);  // 4 extent < 2^exponent
   const double spacing = std::ldexp(1.0, exponent);
-  return {std::nearbyint(first.x / spacing) * spacing, std::nearbyint(first.y / spacing) * spacing};
+  const Point2 origin{std::nearbyint(first.x / spacing) * spacing,
+                      std::nearbyint(first.y / spacing) * spacing};
+  // A polygon whose extent or position is near double's range has no finite grid point to
+  // move to: it stays where it is (its constructions overflow with or without a frame).
+  const bool finite = std::isfinite(spacing) && std::isfinite(origin.x) && std::isfinite(origin.y);
+  return finite ? origin : Point2{0.0, 0.0};
 }
 
 }  // namespace
