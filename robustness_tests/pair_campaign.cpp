@@ -16,6 +16,7 @@
 #include "rockcontact/kernel/2d/crossing_point.hpp"
 #include "rockcontact/kernel/2d/entrance_block.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/core/policy_disagreement.hpp"
 
 namespace rockcontact::robustness {
 namespace {
@@ -26,7 +27,11 @@ using contact::PairWorkspace;
 using contact::PotentialContactParams;
 using rk::ConvexPolygon;
 using rk::Exact;
-using rk::Filtered;
+// The campaign's Filtered side runs under Checked: Filtered's signs and constructions, each
+// sign also evaluated exactly on its own. Exact shares Filtered's staged predicates, so only
+// Checked compares them with an independent evaluation; a disagreement (PolicyDisagreement)
+// is counted with the Filtered disagreements, its message naming the predicate's input.
+using Filtered = rk::Checked;
 using rk::Float;
 using rk::IntersectionPolygon;
 using rk::IpEdge;
@@ -436,10 +441,7 @@ void Case::check_decisions() {
   filtered_ = rk::classify_overlap<Filtered>(polys_.cp, polys_.tp);
   rk::compute_intersection_polygon<Filtered>(polys_.cp, polys_.tp, w_.ip_filtered, w_.clip);
   const rk::PredicateCounters spent = rk::predicate_counters() - before;
-  for (std::size_t i = 0; i < rk::predicate_kind_count; ++i) {
-    stats_.filtered_counters.calls[i] += spent.calls[i];
-    stats_.filtered_counters.fallbacks[i] += spent.fallbacks[i];
-  }
+  stats_.filtered_counters += spent;
   exact_ = rk::classify_overlap<Exact>(polys_.cp, polys_.tp);
   rk::compute_intersection_polygon<Exact>(polys_.cp, polys_.tp, w_.ip_exact, w_.clip);
   ++stats_.verdicts[static_cast<std::size_t>(exact_)];
@@ -707,6 +709,11 @@ void run_case(const CampaignOptions& options, Family family, std::uint64_t index
   try {
     pair = generate_pair(family, options.seed, index);
     Case(options, stats, work, *pair).run(index % options.exact_force_stride == 0);
+  } catch (const rk::PolicyDisagreement& error) {
+    ++stats.filtered_verdict;
+    if (stats.reproducers.size() < options.reproducers_per_family) {
+      stats.reproducers.push_back(reproducer(error.what(), *pair));
+    }
   } catch (const std::exception& error) {
     ++stats.crashes;
     if (stats.reproducers.size() < options.reproducers_per_family) {
@@ -731,10 +738,7 @@ void merge(FamilyStats& into, const FamilyStats& part, std::size_t reproducer_li
   into.filtered_force += part.filtered_force;
   into.crashes += part.crashes;
   for (std::size_t i = 0; i < property_count; ++i) into.violations[i] += part.violations[i];
-  for (std::size_t i = 0; i < rk::predicate_kind_count; ++i) {
-    into.filtered_counters.calls[i] += part.filtered_counters.calls[i];
-    into.filtered_counters.fallbacks[i] += part.filtered_counters.fallbacks[i];
-  }
+  into.filtered_counters += part.filtered_counters;
   into.crossings += part.crossings;
   into.exact_force_cases += part.exact_force_cases;
   into.worst_crossing_ratio = std::max(into.worst_crossing_ratio, part.worst_crossing_ratio);

@@ -6,8 +6,9 @@
 // runs it at nightly size (>= 10^6 cases) and prints the markdown table of the README.
 //
 // Checked on every case (pair = rb::generate_pair(family, seed, index)):
-//   Policy agreement. Filtered and Exact give the same verdict (classify_overlap) and the same
-//     symbolic IP (IpVertex and IpEdge labels); Filtered's constructed crossings are within
+//   Policy agreement. Filtered (run under Checked: every sign also evaluated exactly on its
+//     own, a disagreement counted here) and Exact give the same verdict (classify_overlap) and
+//     the same symbolic IP (IpVertex and IpEdge labels); Filtered's constructed crossings are within
 //     crossing_bound() of Exact's, its input vertices bitwise equal. Float's verdict and IP
 //     labels are compared with Exact's and counted, not asserted.
 //   IP properties, decided exactly (GMP) on the exact IP: the vertices named by the Exact

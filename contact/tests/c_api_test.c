@@ -133,7 +133,7 @@ int main(void) {
   params.kn = kn;
   params.H = H;
 
-  for (policy = ROCKCONTACT_POLICY_FLOAT; policy <= ROCKCONTACT_POLICY_EXACT; ++policy) {
+  for (policy = ROCKCONTACT_POLICY_FLOAT; policy <= ROCKCONTACT_POLICY_CHECKED; ++policy) {
     params.policy = policy;
     check(rockcontact_evaluator_create(&params, &contact) == ROCKCONTACT_OK, "create");
     check(rockcontact_evaluate_pair(contact, a_xy, 4, a_pose, b_xy, 4, b_pose, &r) == ROCKCONTACT_OK,

@@ -40,7 +40,7 @@ program c_api_test
   params%kn = kn
   params%H = H
 
-  do policy = ROCKCONTACT_POLICY_FLOAT, ROCKCONTACT_POLICY_EXACT
+  do policy = ROCKCONTACT_POLICY_FLOAT, ROCKCONTACT_POLICY_CHECKED
     params%policy = policy
     call check(rockcontact_evaluator_create(params, contact) == ROCKCONTACT_OK, 'create')
     call check(rockcontact_evaluate_pair(contact, a_xy, 4_c_int32_t, a_pose, b_xy, 4_c_int32_t, &

@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(unknown_policy_or_demarcation) {
   for (const json& bad : {json("fast"), json("Exact"), json(1), json(nullptr)}) {
     json document = valid_document();
     document["policy"] = bad;
-    expect_input_error(document, "policy", R"(expected one of "float", "filtered", "exact")");
+    expect_input_error(document, "policy", R"(expected one of "float", "filtered", "exact", "checked")");
     document = valid_document();
     document["demarcation"] = bad;
     expect_input_error(document, "demarcation", R"(expected one of "paper", "exact")");

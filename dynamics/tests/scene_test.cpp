@@ -268,7 +268,7 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
   expect_error([](json& d) { d["contact"]["friction_angle_deg"] = 90; },
                "contact.friction_angle_deg", "a number in [0, 90)");
   expect_error([](json& d) { d["contact"]["policy"] = "fast"; }, "contact.policy",
-               R"(one of "float", "filtered", "exact")");
+               R"(one of "float", "filtered", "exact", "checked")");
   expect_error([](json& d) { d["contact"]["mu"] = 0.3; }, "contact.mu", "unknown field");
   expect_error([](json& d) { d["contact"]["friction"] = "coulomb"; }, "contact.friction",
                R"(one of "elastoplastic", "paper" (with kt and friction_angle_deg), got string "coulomb")");

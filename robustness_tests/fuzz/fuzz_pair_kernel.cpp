@@ -1,4 +1,8 @@
 // libFuzzer target: the pair kernel and the potential contact law under Filtered and Exact.
+// The Filtered side runs under the Checked policy: Filtered's signs and constructions, each
+// sign also evaluated exactly on its own, a disagreement thrown as PolicyDisagreement with the
+// predicate's input (Exact shares Filtered's staged predicates, so only Checked compares them
+// with an independent evaluation).
 //
 // The input bytes decode into two point sets (pair_input.hpp: raw IEEE bit patterns, small
 // integers, dyadic numbers far from the origin, or a mix), which become polygons either
@@ -56,7 +60,7 @@ using rc::contact::PotentialContactParams;
 using rc::fuzz::PairInput;
 using rk::ConvexPolygon;
 using rk::Exact;
-using rk::Filtered;
+using Filtered = rk::Checked;
 using rk::Float;
 using rk::IntersectionPolygon;
 using rk::IpVertex;

@@ -33,7 +33,8 @@ module rockcontact
                                        ROCKCONTACT_ERROR_INTERNAL = 4
   integer(c_int32_t), parameter, public :: ROCKCONTACT_POLICY_FLOAT = 0, &
                                            ROCKCONTACT_POLICY_FILTERED = 1, &
-                                           ROCKCONTACT_POLICY_EXACT = 2
+                                           ROCKCONTACT_POLICY_EXACT = 2, &
+                                           ROCKCONTACT_POLICY_CHECKED = 3
   integer(c_int32_t), parameter, public :: ROCKCONTACT_DEMARCATION_EXACT = 0, &
                                            ROCKCONTACT_DEMARCATION_PAPER = 1
   integer(c_int32_t), parameter, public :: ROCKCONTACT_SEPARATE = 0, ROCKCONTACT_TOUCH = 1, &

@@ -61,7 +61,9 @@ typedef enum rockcontact_error {
 enum {
   ROCKCONTACT_POLICY_FLOAT = 0,    /* plain double: fast, may be wrong on degenerate input */
   ROCKCONTACT_POLICY_FILTERED = 1, /* exact decisions, double constructions: the default */
-  ROCKCONTACT_POLICY_EXACT = 2     /* GMP rationals, rounded once: the reference */
+  ROCKCONTACT_POLICY_EXACT = 2,    /* exact rationals, rounded once: the reference */
+  ROCKCONTACT_POLICY_CHECKED = 3   /* filtered, every sign also checked exactly; a disagreement
+                                      is ROCKCONTACT_ERROR_INTERNAL with the predicate's input */
 };
 
 enum {

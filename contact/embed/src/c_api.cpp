@@ -63,9 +63,10 @@ rockcontact::PairContactParams to_cpp(const rockcontact_params& p) {
     case ROCKCONTACT_POLICY_FLOAT: out.policy = rk::PolicyKind::float_; break;
     case ROCKCONTACT_POLICY_FILTERED: out.policy = rk::PolicyKind::filtered; break;
     case ROCKCONTACT_POLICY_EXACT: out.policy = rk::PolicyKind::exact; break;
+    case ROCKCONTACT_POLICY_CHECKED: out.policy = rk::PolicyKind::checked; break;
     default:
       throw std::invalid_argument("params.policy: expected ROCKCONTACT_POLICY_FLOAT (0), _FILTERED "
-                                  "(1) or _EXACT (2), got " + std::to_string(p.policy));
+                                  "(1), _EXACT (2) or _CHECKED (3), got " + std::to_string(p.policy));
   }
   switch (p.demarcation) {
     case ROCKCONTACT_DEMARCATION_EXACT: out.demarcation = rk::Demarcation::exact; break;

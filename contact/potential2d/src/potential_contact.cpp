@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rockcontact/kernel/core/predicate_scope.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::contact {
@@ -33,24 +34,28 @@ void evaluate_checked(const ConvexPolygon& cp, const ConvexPolygon& tp,
                       const PotentialContactParams& params, PairWorkspace& workspace,
                       PairResult& out) {
   const kernel::PredicateCounters before = kernel::predicate_counters();
-  out.status = kernel::classify_overlap<Policy>(cp, tp);
   out.ip.clear();
   out.area = 0.0;
   out.force = {};
   out.point.reset();
   out.ip_features.vertices.clear();
   out.ip_features.edges.clear();
-  if (out.status == Overlap::overlap) {
-    kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
-    if (!out.ip_features.empty()) {
-      const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
-                                              params.small_edge_fraction * params.H};
-      const kernel::PotentialResultant r = kernel::integrate_potential<Policy>(
-          cp, tp, out.ip_features, potential, workspace.force, out.ip);
-      out.area = r.area;
-      out.force = r.force;
-      out.point = r.point;
+  {
+    // The verdict and the clip are predicates only: one rounding-mode scope for both.
+    const kernel::PredicateScope scope;
+    out.status = kernel::classify_overlap<Policy>(cp, tp);
+    if (out.status == Overlap::overlap) {
+      kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
     }
+  }
+  if (out.status == Overlap::overlap && !out.ip_features.empty()) {
+    const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
+                                            params.small_edge_fraction * params.H};
+    const kernel::PotentialResultant r = kernel::integrate_potential<Policy>(
+        cp, tp, out.ip_features, potential, workspace.force, out.ip);
+    out.area = r.area;
+    out.force = r.force;
+    out.point = r.point;
   }
   const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
   out.predicates = spent.total_calls();
@@ -99,5 +104,8 @@ template void evaluate_pair<kernel::Filtered>(const ConvexPolygon&, const Convex
                                               PairResult&);
 template void evaluate_pair<kernel::Exact>(const ConvexPolygon&, const ConvexPolygon&,
                                            const PotentialContactParams&, PairWorkspace&, PairResult&);
+template void evaluate_pair<kernel::Checked>(const ConvexPolygon&, const ConvexPolygon&,
+                                             const PotentialContactParams&, PairWorkspace&,
+                                             PairResult&);
 
 }  // namespace rockcontact::contact

@@ -135,7 +135,7 @@ void add_pairs(CLI::App& app, int& exit_status) {
   sub->add_option("--policy", options->policy,
                   "Number policy, overrides the file's (default filtered; with --compare "
                   "default exact, and the file's policy is ignored)")
-      ->check(CLI::IsMember({"float", "filtered", "exact"}));
+      ->check(CLI::IsMember({"float", "filtered", "exact", "checked"}));
   sub->add_option("--demarcation", options->demarcation,
                   "Demarcation points, overrides the file's (default exact)")
       ->check(CLI::IsMember({"paper", "exact"}));

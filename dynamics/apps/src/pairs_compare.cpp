@@ -27,7 +27,7 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 // ---- Reading the output schema with optional fields
 
 constexpr JsonField document_fields[] = {
-    {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
+    {"policy", false, "one of \"float\", \"filtered\", \"exact\", \"checked\""},
     {"demarcation", false, "one of \"paper\", \"exact\""},
     {"results", true, "an array of results {\"id\", ...}, at most one per pair"},
     {"stats", false,
@@ -530,6 +530,14 @@ Comparison compare_pairs(const PairsInput& input, const ResultsDocument& theirs,
                          const PairsOverrides& overrides, const CompareOptions& options) {
   PairsOverrides ours_overrides = overrides;
   ours_overrides.policy = overrides.policy.value_or(kernel::PolicyKind::exact);
+  if (ours_overrides.policy == kernel::PolicyKind::exact) {
+    // Exact shares Filtered's staged predicates; a pass under Checked first compares every
+    // sign with its own exact evaluation, so a filter bug stops the comparison with the
+    // predicate's input (PolicyDisagreement) instead of passing for the reference.
+    PairsOverrides checked = overrides;
+    checked.policy = kernel::PolicyKind::checked;
+    static_cast<void>(run_pairs(input, checked));
+  }
   // Read back through the same reader as theirs, so both sides are the same kind of record.
   const ResultsDocument ours = parse_results(json(run_pairs(input, ours_overrides)), "ours");
   return compare_results(input, ours, theirs, options);

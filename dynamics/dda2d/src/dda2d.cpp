@@ -195,13 +195,6 @@ bool interiors_overlap(const detail::BroadPhaseBox& a, const detail::BroadPhaseB
   return a.xmin < b.xmax && b.xmin < a.xmax && a.ymin < b.ymax && b.ymin < a.ymax;
 }
 
-void add_counters(kernel::PredicateCounters& total, const kernel::PredicateCounters& spent) {
-  for (std::size_t k = 0; k < kernel::predicate_kind_count; ++k) {
-    total.calls[k] += spent.calls[k];
-    total.fallbacks[k] += spent.fallbacks[k];
-  }
-}
-
 // What the engine keeps per block besides the public BlockState.
 struct Body {
   explicit Body(Parts p) : parts(std::move(p)) {}
@@ -385,7 +378,7 @@ class CountInto {
  public:
   explicit CountInto(kernel::PredicateCounters& total)
       : total_(total), before_(kernel::predicate_counters()) {}
-  ~CountInto() { add_counters(total_, kernel::predicate_counters() - before_); }
+  ~CountInto() { total_ += kernel::predicate_counters() - before_; }
   CountInto(const CountInto&) = delete;
   CountInto& operator=(const CountInto&) = delete;
 
@@ -706,7 +699,7 @@ void Dda2d::Impl::count_worker(const kernel::PredicateCounters& before) {
   if (omp_get_thread_num() == 0) return;
   const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
 #pragma omp critical(rockcontact_dda2d_counters)
-  add_counters(counters, spent);
+  counters += spent;
 }
 
 void Dda2d::Impl::measure(PartContact& c, PairScratch& mine) const {
@@ -1467,7 +1460,7 @@ Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params) {
     const CountInto count(spent);
     impl_ = std::make_shared<Impl>(std::move(blocks), std::move(law), params, nullptr);
   }
-  add_counters(impl_->counters, spent);
+  impl_->counters += spent;
 }
 
 Dda2d::Dda2d(std::vector<BlockSpec> blocks, ContactLaw law, DdaParams params,

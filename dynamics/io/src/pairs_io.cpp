@@ -27,7 +27,7 @@ std::string join_message(const std::string& source, const std::string& path,
 constexpr JsonField document_fields[] = {
     {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
     {"H", true, "the potential length scale H in m, a finite number > 0"},
-    {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
+    {"policy", false, "one of \"float\", \"filtered\", \"exact\", \"checked\""},
     {"demarcation", false, "one of \"paper\", \"exact\""},
     {"pairs", true, "an array of pairs {\"id\", \"cp\", \"tp\"}"},
 };

@@ -68,7 +68,7 @@ constexpr JsonField contact_fields[] = {
      "the friction law, one of \"elastoplastic\", \"paper\" (with kt and friction_angle_deg)"},
     {"cohesion", false, "the cohesion in Pa, a finite number >= 0 (with kt and friction_angle_deg)"},
     {"damping_ratio", false, "the contact dashpots' critical damping ratio, a finite number >= 0"},
-    {"policy", false, "one of \"float\", \"filtered\", \"exact\""},
+    {"policy", false, "one of \"float\", \"filtered\", \"exact\", \"checked\""},
     {"demarcation", false, "one of \"paper\", \"exact\""},
 };
 constexpr JsonField block_fields[] = {

@@ -3,12 +3,16 @@
 #include <cmath>
 
 #include "rockcontact/kernel/2d/detail/constructions.hpp"
-#include "rockcontact/kernel/core/detail/error_bounded.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::kernel {
 namespace detail {
+
+// A construction, evaluated in round to nearest (never inside a PredicateScope): unit roundoff
+// u = 2^-53 and the smallest subnormal.
+inline constexpr double unit_roundoff = 0x1p-53;
+inline constexpr double smallest_subnormal = 0x1p-1074;
 
 std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point2& q, const Point2& t0,
                                                     const Point2& t1, double tolerance,
@@ -37,9 +41,10 @@ namespace {
 
 Point2 crossing_rounded_exactly(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1,
                                 const Point2& origin) {
-  detail::PointT<mpq_class> x = detail::construct_crossing<mpq_class>(p, q, t0, t1);
-  x.x -= mpq_class(origin.x);
-  x.y -= mpq_class(origin.y);
+  using detail::ExactRational;
+  detail::PointT<ExactRational> x = detail::construct_crossing<ExactRational>(p, q, t0, t1);
+  x.x -= ExactRational(origin.x);
+  x.y -= ExactRational(origin.y);
   return detail::round(x);
 }
 
@@ -52,7 +57,7 @@ Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& 
   if constexpr (Policy::kind == PolicyKind::float_) {
     const Point2 x = detail::round(detail::construct_crossing<double>(p, q, t0, t1));
     return {x.x - origin.x, x.y - origin.y};
-  } else if constexpr (Policy::kind == PolicyKind::filtered) {
+  } else if constexpr (Policy::kind != PolicyKind::exact) {  // Filtered, Checked
     if (const auto c = detail::crossing_in_double(p, q, t0, t1, crossing_parameter_tolerance, origin)) {
       return c->point;
     }
@@ -69,6 +74,7 @@ Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& 
 ROCKCONTACT_INSTANTIATE(Float)
 ROCKCONTACT_INSTANTIATE(Filtered)
 ROCKCONTACT_INSTANTIATE(Exact)
+ROCKCONTACT_INSTANTIATE(Checked)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -180,6 +180,7 @@ double compute_penetration_depth(const ConvexPolygon& a, const ConvexPolygon& b)
 ROCKCONTACT_INSTANTIATE(Float)
 ROCKCONTACT_INSTANTIATE(Filtered)
 ROCKCONTACT_INSTANTIATE(Exact)
+ROCKCONTACT_INSTANTIATE(Checked)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -161,6 +161,7 @@ void construct_points(const ConvexPolygon& cp, const ConvexPolygon& tp,
 ROCKCONTACT_INSTANTIATE(Float)
 ROCKCONTACT_INSTANTIATE(Filtered)
 ROCKCONTACT_INSTANTIATE(Exact)
+ROCKCONTACT_INSTANTIATE(Checked)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -1,7 +1,5 @@
 #include "rockcontact/kernel/2d/potential_integral.hpp"
 
-#include <gmpxx.h>
-
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -198,7 +196,7 @@ PotentialResultant integrate_potential(const ConvexPolygon& cp, const ConvexPoly
                                        const PotentialParams& params,
                                        PotentialWorkspace& workspace, std::vector<Point2>& ip) {
   if constexpr (Policy::kind == PolicyKind::exact) {
-    kd::ForceScratch<mpq_class> scratch;
+    kd::ForceScratch<kd::ExactRational> scratch;
     return integrate_force<Policy>(cp, tp, features, params, scratch, ip);
   } else {
     // In double, in a frame near the pair: coordinates far from the origin would leave the
@@ -221,6 +219,7 @@ PotentialResultant integrate_potential(const ConvexPolygon& cp, const ConvexPoly
 ROCKCONTACT_INSTANTIATE(Float)
 ROCKCONTACT_INSTANTIATE(Filtered)
 ROCKCONTACT_INSTANTIATE(Exact)
+ROCKCONTACT_INSTANTIATE(Checked)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -16,6 +16,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -25,8 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "rockcontact/kernel/core/predicate_stats.hpp"
 #include "rockcontact/kernel/2d/predicates.hpp"
+#include "rockcontact/kernel/core/policy_disagreement.hpp"
+#include "rockcontact/kernel/core/predicate_scope.hpp"
+#include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::kernel {
 std::ostream& operator<<(std::ostream& out, Sign s) { return out << static_cast<int>(s); }
@@ -43,6 +46,32 @@ namespace {
 using rockcontact::testing::seed_for;
 
 constexpr double u = rockcontact::testing::unit_roundoff;
+// The filters' per-operation error bound, valid under every rounding mode (predicates.hpp).
+constexpr double eps = 2 * u;
+
+// The rounding modes a double filter may run under: round to nearest (the default) and upward
+// (inside a PredicateScope once an interval stage switched it).
+constexpr std::array<int, 2> rounding_modes{FE_TONEAREST, FE_UPWARD};
+const char* mode_name(int mode) { return mode == FE_UPWARD ? "upward" : "to nearest"; }
+
+// Does double arithmetic round upward now? (CGAL switches the SSE rounding mode alone, which
+// std::fegetround, reading the x87 control word, does not see on x86-64.)
+bool rounding_upward() {
+  volatile double tiny = 0x1p-60;
+  return 1.0 + tiny > 1.0;
+}
+
+// Calls f() with the FPU rounding in `mode`; never inside a PredicateScope, whose switch this
+// would undo. f must be a call the compiler cannot evaluate
+// before the switch: the helpers below are noinline and read their inputs from memory.
+template <class F>
+auto under_rounding(int mode, F&& f) {
+  const int previous = std::fegetround();
+  std::fesetround(mode);
+  const auto result = f();
+  std::fesetround(previous);
+  return result;
+}
 
 Sign sign(const mpq_class& x) { return static_cast<Sign>(sgn(x)); }
 
@@ -301,18 +330,30 @@ BOOST_AUTO_TEST_CASE(cross_sign_matches_exact_reference) {
   BOOST_TEST(float_wrong.at("near_parallel_far") > 0);
 }
 
-// Shewchuk's ccwerrboundA, re-derived. With ux = fl(p1.x - p0.x) etc., left = fl(ux vy),
-// right = fl(uy vx): each product is the exact one times (1 + d1)(1 + d2)(1 + d3), |di| <= u, so
-//   |det_exact - (left - right)| <= ((1 + u)^3 / (1 - u)^3 - 1)(|left| + |right|)
-//                                  = (3u + 12u^2 + O(u^3))(|left| + |right|) <= (3 + 16u) u (...),
+// Shewchuk's ccwerrboundA with eps = 2^-52 for u, re-derived under round to nearest and
+// upward rounding. With ux = fl(p1.x - p0.x) etc., left = fl(ux vy), right = fl(uy vx): each
+// product is the exact one times (1 + d1)(1 + d2)(1 + d3), |di| <= eps in either mode, so
+//   |det_exact - (left - right)| <= (3 eps + O(eps^2))(|left| + |right|) <= (3 + 16 eps) eps (...),
 // where left - right is the exact difference of the rounded products (checked in GMP). The
-// final rounding det = fl(left - right) adds u |det|, which cannot change its sign: so the
-// filter's decision |det| > bound => sign(det) is exact must hold, and is checked too. (The
-// header states the bound for fl(det); that is off by that last u |det| when there is no
-// cancellation; inputs where it is exceeded are counted and printed, not asserted.)
-// The constant must be exactly (3 + 16u)u; subnormal products add the underflow term 2^-1070.
+// final rounding det = fl(left - right) cannot change its sign, rounding being monotone in
+// every mode: so the filter's decision |det| > bound => sign(det) is exact must hold, and is
+// checked too. The constant must be exactly (3 + 16 eps) eps; subnormal products add the
+// underflow term 2^-1070.
+struct CrossQuantities {
+  double left, right, det, bound;
+};
+
+[[gnu::noinline]] CrossQuantities cross_quantities(const CrossInput& c, bool underflow) {
+  const double ux = c.p1.x - c.p0.x, uy = c.p1.y - c.p0.y;
+  const double vx = c.q1.x - c.q0.x, vy = c.q1.y - c.q0.y;
+  const double left = ux * vy, right = uy * vx;
+  return {left, right, left - right,
+          rkd::cross_error_factor * (std::fabs(left) + std::fabs(right)) +
+              (underflow ? rkd::cross_underflow_term : 0.0)};
+}
+
 BOOST_AUTO_TEST_CASE(cross_filter_bound_rederived) {
-  BOOST_TEST(mpq_class(rkd::cross_error_factor) == mpq_class((3 + 16 * mpq_class(u)) * u));
+  BOOST_TEST(mpq_class(rkd::cross_error_factor) == mpq_class((3 + 16 * mpq_class(eps)) * eps));
   BOOST_TEST(rkd::cross_underflow_term == 0x1p-1070);
 
   Generator g(seed_for("cross_filter_bound_rederived", 20240603));
@@ -320,73 +361,72 @@ BOOST_AUTO_TEST_CASE(cross_filter_bound_rederived) {
   for (auto& [name, inputs] : orientation_families(g, 3000)) {
     if (name != "overflow_2^530") families["orientation_" + name] = std::move(inputs);
   }
-  double worst_ratio = 0.0;
-  int rounded_det_exceeds = 0;
-  for (const auto& [name, inputs] : families) {
-    const bool underflow = name.find("underflow") != std::string::npos;
-    int violations = 0, wrong_certified_signs = 0;
-    for (const CrossInput& c : inputs) {
-      const double ux = c.p1.x - c.p0.x, uy = c.p1.y - c.p0.y;
-      const double vx = c.q1.x - c.q0.x, vy = c.q1.y - c.q0.y;
-      const double left = ux * vy, right = uy * vx;
-      const double det = left - right;
-      const double bound = rkd::cross_error_factor * (std::fabs(left) + std::fabs(right)) +
-                           (underflow ? rkd::cross_underflow_term : 0.0);
-      const mpq_class exact = exact_cross(c.p0, c.p1, c.q0, c.q1);
-      const mpq_class error = abs(mpq_class(exact - (mpq_class(left) - mpq_class(right))));
-      violations += error > bound;
-      if (std::fabs(det) > bound) wrong_certified_signs += sign(exact) != sign(mpq_class(det));
-      rounded_det_exceeds += abs(mpq_class(exact - det)) > bound;
-      if (!underflow && bound > 0) worst_ratio = std::max(worst_ratio, mpq_class(error / bound).get_d());
+  for (const int mode : rounding_modes) {
+    double worst_ratio = 0.0;
+    for (const auto& [name, inputs] : families) {
+      const bool underflow = name.find("underflow") != std::string::npos;
+      int violations = 0, wrong_certified_signs = 0;
+      for (const CrossInput& c : inputs) {
+        const CrossQuantities q = under_rounding(mode, [&] { return cross_quantities(c, underflow); });
+        const mpq_class exact = exact_cross(c.p0, c.p1, c.q0, c.q1);
+        const mpq_class error = abs(mpq_class(exact - (mpq_class(q.left) - mpq_class(q.right))));
+        violations += error > q.bound;
+        if (std::fabs(q.det) > q.bound) wrong_certified_signs += sign(exact) != sign(mpq_class(q.det));
+        if (!underflow && q.bound > 0) worst_ratio = std::max(worst_ratio, mpq_class(error / q.bound).get_d());
+      }
+      BOOST_TEST_INFO("family " << name << ", rounding " << mode_name(mode));
+      BOOST_TEST(violations == 0);
+      BOOST_TEST_INFO("family " << name << ", rounding " << mode_name(mode));
+      BOOST_TEST(wrong_certified_signs == 0);
     }
-    BOOST_TEST_INFO("family " << name);
-    BOOST_TEST(violations == 0);
-    BOOST_TEST_INFO("family " << name);
-    BOOST_TEST(wrong_certified_signs == 0);
+    BOOST_TEST_MESSAGE("cross filter, rounding " << mode_name(mode)
+                                                  << ": largest observed error / bound = " << worst_ratio);
   }
-  BOOST_TEST_MESSAGE("cross filter: largest observed error / bound = " << worst_ratio
-                                                                       << "; the header's bound taken on fl(det) itself is exceeded on "
-                                                                       << rounded_det_exceeds << " inputs");
 }
 
-// The two crossing_side filter stages, re-derived on random and near-degenerate inputs:
-//   semi-static:   |V_exact - V| <= 11u T, T = D̄ Ā + N̄ B̄ with X̄ = |x1 y2| + |x2 y1| the
-//                  magnitude of each rounded cross product (predicates.hpp), whenever every
-//                  magnitude is at least 2^-400;
-//   running error: |V_exact - V| <= error of the ErrorBounded evaluation (error_bounded.hpp).
-// V = fl(D A + N B) is the double evaluation of crossing_side_formula.
-BOOST_AUTO_TEST_CASE(crossing_side_filter_bounds_rederived) {
-  BOOST_TEST(rkd::crossing_side_error_factor == 11 * u);
-  Generator g(seed_for("crossing_side_filter_bounds_rederived", 20240604));
-  int semi_static_violations = 0, running_violations = 0, checked = 0;
-  for (const auto& [name, inputs] : crossing_side_families(g, 1500)) {
-    for (const SideInput& s : inputs) {
-      const double value = rkd::crossing_side_formula<double>(s.a, s.b, s.c, rkd::double_diff);
-      const mpq_class exact = rkd::crossing_side_formula<mpq_class>(
-          s.a, s.b, s.c, [](double x, double y) { return mpq_class(mpq_class(x) - mpq_class(y)); });
-      const mpq_class error = abs(mpq_class(exact - value));
-      const auto magnitude = [](double x1, double y1, double x2, double y2) {
-        return std::fabs(x1 * y2) + std::fabs(x2 * y1);
-      };
-      const Line &a = s.a, &b = s.b, &c = s.c;
-      const double d1x = a.q.x - a.p.x, d1y = a.q.y - a.p.y, d2x = b.q.x - b.p.x, d2y = b.q.y - b.p.y;
-      const double d3x = c.q.x - c.p.x, d3y = c.q.y - c.p.y, wx = b.p.x - a.p.x, wy = b.p.y - a.p.y;
-      const double rx = a.p.x - c.p.x, ry = a.p.y - c.p.y;
-      const double D = magnitude(d1x, d1y, d2x, d2y), N = magnitude(wx, wy, d2x, d2y);
-      const double A = magnitude(d3x, d3y, rx, ry), B = magnitude(d3x, d3y, d1x, d1y);
-      if (std::fmin(std::fmin(D, N), std::fmin(A, B)) >= 0x1p-400) {
-        semi_static_violations += error > rkd::crossing_side_error_factor * (D * A + N * B);
+// The crossing_side semi-static filter, re-derived on random and near-degenerate inputs under
+// round to nearest and upward rounding:
+//   |V_exact - V| <= 11 eps T, T = D̄ Ā + N̄ B̄ with X̄ = |x1 y2| + |x2 y1| the magnitude of
+//   each rounded cross product (predicates.hpp), whenever every magnitude is at least 2^-400.
+// V = fl(D A + N B) is the double evaluation of crossing_side_formula in that rounding mode.
+struct SideQuantities {
+  double value, D, N, A, B;
+};
+
+[[gnu::noinline]] SideQuantities side_quantities(const SideInput& s) {
+  const auto magnitude = [](double x1, double y1, double x2, double y2) {
+    return std::fabs(x1 * y2) + std::fabs(x2 * y1);
+  };
+  const Line &a = s.a, &b = s.b, &c = s.c;
+  const double d1x = a.q.x - a.p.x, d1y = a.q.y - a.p.y, d2x = b.q.x - b.p.x, d2y = b.q.y - b.p.y;
+  const double d3x = c.q.x - c.p.x, d3y = c.q.y - c.p.y, wx = b.p.x - a.p.x, wy = b.p.y - a.p.y;
+  const double rx = a.p.x - c.p.x, ry = a.p.y - c.p.y;
+  return {rkd::crossing_side_formula<double>(a, b, c, rkd::double_diff), magnitude(d1x, d1y, d2x, d2y),
+          magnitude(wx, wy, d2x, d2y), magnitude(d3x, d3y, rx, ry), magnitude(d3x, d3y, d1x, d1y)};
+}
+
+BOOST_AUTO_TEST_CASE(crossing_side_filter_bound_rederived) {
+  BOOST_TEST(rkd::crossing_side_error_factor == 11 * eps);
+  Generator g(seed_for("crossing_side_filter_bound_rederived", 20240604));
+  const auto families = crossing_side_families(g, 1500);
+  for (const int mode : rounding_modes) {
+    int violations = 0, checked = 0;
+    for (const auto& [name, inputs] : families) {
+      for (const SideInput& s : inputs) {
+        const SideQuantities q = under_rounding(mode, [&] { return side_quantities(s); });
+        if (!(std::fmin(std::fmin(q.D, q.N), std::fmin(q.A, q.B)) >= 0x1p-400)) continue;
+        const mpq_class exact = rkd::crossing_side_formula<mpq_class>(
+            s.a, s.b, s.c, [](double x, double y) { return mpq_class(mpq_class(x) - mpq_class(y)); });
+        const mpq_class error = abs(mpq_class(exact - q.value));
+        violations += error > rkd::crossing_side_error_factor * (q.D * q.A + q.N * q.B);
+        ++checked;
       }
-      const rkd::ErrorBounded running = rkd::crossing_side_formula<rkd::ErrorBounded>(
-          s.a, s.b, s.c, [](double x, double y) { return rkd::ErrorBounded::difference(x, y); });
-      BOOST_TEST_REQUIRE(running.value == value);
-      running_violations += error > running.error;
-      ++checked;
     }
+    BOOST_TEST_INFO("rounding " << mode_name(mode));
+    BOOST_TEST(violations == 0);
+    BOOST_TEST(checked > 5000);
+    BOOST_TEST_MESSAGE("crossing_side bound, rounding " << mode_name(mode) << ": checked on " << checked << " inputs");
   }
-  BOOST_TEST(semi_static_violations == 0);
-  BOOST_TEST(running_violations == 0);
-  BOOST_TEST_MESSAGE("crossing_side bounds checked on " << checked << " inputs");
 }
 
 // Every filter stage on inputs walked across its own bound. Random families rarely land near a
@@ -396,11 +436,19 @@ BOOST_AUTO_TEST_CASE(crossing_side_filter_bounds_rederived) {
 // ulps for k = 1..48 and by 2^j ulps for j = 6..30, so |value| / bound sweeps from below 1 to
 // far above it; every certificate issued is checked against GMP, and the test requires many
 // certificates within a factor 4 of the bound, or it has not tested the threshold at all.
-//   cross, static:      |det| > (3 + 16u) u (|left| + |right|) + 2^-1070   (predicates.hpp)
-//   cross, exact-in-double (stage 1b): its answer whenever it gives one
-//   crossing_side, semi-static:  |V| > 9u T                                  (predicates.hpp)
-//   crossing_side, running error: certain_sign(ErrorBounded)             (error_bounded.hpp)
-//   and the whole Filtered predicates.
+// Each filter runs under round to nearest and upward rounding:
+//   cross, static:      |det| > (3 + 16 eps) eps (|left| + |right|) + 2^-1070   (predicates.hpp)
+//   crossing_side, semi-static:  |V| > 11 eps T                                (predicates.hpp)
+//   and the whole staged predicates (filter, interval, exact), each call inside a
+//   PredicateScope that an earlier fallback switched to upward rounding, as a pair's later
+//   predicates run.
+[[gnu::noinline]] std::optional<Sign> static_filter(const Point2& p, const Point2& q, const Point2& r) {
+  return rkd::cross_sign_static_filter(p, q, p, r);
+}
+[[gnu::noinline]] std::optional<Sign> semi_static_filter(const SideInput& s) {
+  return rkd::crossing_side_semi_static(s.a, s.b, s.c);
+}
+
 BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
   Generator g(seed_for("filters_never_certify_a_wrong_sign_near_their_bounds", 20261125));
   struct Tally {
@@ -412,7 +460,8 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
       wrong += !right;
     }
   };
-  Tally cross_static, cross_in_double, side_semi_static, side_running, cross_whole, side_whole;
+  std::array<Tally, 2> cross_static, side_semi_static;
+  Tally cross_whole, side_whole, cross_after_fallback, side_after_fallback;
   std::vector<int> steps;
   for (int k = 1; k <= 48; ++k) steps.push_back(k);
   for (int j = 6; j <= 30; ++j) steps.push_back(1 << j);
@@ -420,6 +469,13 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     for (int i = 0; i < ulps && ulps <= 48; ++i) x = std::nextafter(x, HUGE_VAL);
     if (ulps > 48) x += ulps * (std::nextafter(x, HUGE_VAL) - x);
     return x;
+  };
+  // A call after a fallback in the same scope: its filter runs under upward rounding.
+  const auto after_a_fallback = [](auto&& predicate) {
+    const rk::PredicateScope scope;
+    BOOST_TEST_REQUIRE((rk::orientation<rk::Filtered>({0.375, 0.125}, {0.875, 0.375}, {1.625, 0.75}) == Sign::zero));
+    BOOST_TEST_REQUIRE(rounding_upward());
+    return predicate();
   };
   for (int trial = 0; trial < 300; ++trial) {
     const Point2 offset = trial % 2 == 0 ? Point2{0, 0} : Point2{1e6, -1e6};
@@ -429,13 +485,16 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     for (const int k : steps) {
       const Point2 r{moved(r0.x, k), r0.y};
       const Sign expected = sign(exact_cross(p, q, p, r));
-      const double ux = q.x - p.x, uy = q.y - p.y, vx = r.x - p.x, vy = r.y - p.y;
-      const double left = ux * vy, right = uy * vx, det = left - right;
-      const double bound = rkd::cross_error_factor * (std::fabs(left) + std::fabs(right)) + rkd::cross_underflow_term;
-      cross_static.add(std::fabs(det) > bound, rk::sign_of(det) == expected, std::fabs(det) / bound);
-      const auto in_double = rkd::cross_sign_exact_in_double(p, q, p, r, ux, uy, vx, vy, left, right);
-      cross_in_double.add(in_double.has_value(), in_double == expected, std::fabs(det) / bound);
-      cross_whole.add(true, rk::orientation<rk::Filtered>(p, q, r) == expected, std::fabs(det) / bound);
+      const CrossQuantities nearest =
+          under_rounding(FE_TONEAREST, [&] { return cross_quantities({p, q, p, r}, true); });
+      const double ratio = std::fabs(nearest.det) / nearest.bound;
+      for (std::size_t m = 0; m < rounding_modes.size(); ++m) {
+        const auto certified = under_rounding(rounding_modes[m], [&] { return static_filter(p, q, r); });
+        cross_static[m].add(certified.has_value(), certified == expected, ratio);
+      }
+      cross_whole.add(true, rk::orientation<rk::Filtered>(p, q, r) == expected, ratio);
+      cross_after_fallback.add(
+          true, after_a_fallback([&] { return rk::orientation<rk::Filtered>(p, q, r); }) == expected, ratio);
     }
     // Lines a and b through a random point X, c through X's rounding, then c.q moved.
     const Point2 x = add(g.point(1.0), offset);
@@ -448,19 +507,22 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     const ExactPoint cross = exact_crossing(a, b);
     const Line c0 = through({nearest(cross.x), nearest(cross.y)});
     for (const int k : steps) {
-      const Line c{c0.p, {moved(c0.q.x, k), c0.q.y}};
-      const Sign expected = exact_crossing_side(a, b, c) * sign(exact_cross(a.p, a.q, b.p, b.q));
-      const auto diff = [](double x1, double y1) { return rkd::ErrorBounded::difference(x1, y1); };
-      const rkd::ErrorBounded running = rkd::crossing_side_formula<rkd::ErrorBounded>(a, b, c, diff);
-      const double ratio = std::fabs(running.value) / running.error;
-      const auto semi = rkd::crossing_side_semi_static(a, b, c);
-      side_semi_static.add(semi.has_value(), semi == expected, ratio);
-      const auto certain = rkd::certain_sign(running);
-      side_running.add(certain.has_value(), certain == expected, ratio);
-      side_whole.add(true, rkd::crossing_side_value_sign_filtered(a, b, c) == expected, ratio);
+      const SideInput s{a, b, {c0.p, {moved(c0.q.x, k), c0.q.y}}};
+      const Sign expected = exact_crossing_side(s.a, s.b, s.c) * sign(exact_cross(a.p, a.q, b.p, b.q));
+      const SideQuantities nearest = under_rounding(FE_TONEAREST, [&] { return side_quantities(s); });
+      const double ratio =
+          std::fabs(nearest.value) / (rkd::crossing_side_error_factor * (nearest.D * nearest.A + nearest.N * nearest.B));
+      for (std::size_t m = 0; m < rounding_modes.size(); ++m) {
+        const auto certified = under_rounding(rounding_modes[m], [&] { return semi_static_filter(s); });
+        side_semi_static[m].add(certified.has_value(), certified == expected, ratio);
+      }
+      side_whole.add(true, rkd::crossing_side_value_sign_staged(s.a, s.b, s.c) == expected, ratio);
+      side_after_fallback.add(
+          true, after_a_fallback([&] { return rkd::crossing_side_value_sign_staged(s.a, s.b, s.c); }) == expected,
+          ratio);
     }
   }
-  const auto report = [](const char* name, const Tally& t, int min_near) {
+  const auto report = [](const std::string& name, const Tally& t, int min_near) {
     BOOST_TEST_INFO(name);
     BOOST_TEST(t.wrong == 0);
     BOOST_TEST_INFO(name << ": certificates within 4x of the bound");
@@ -470,14 +532,14 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     BOOST_TEST_MESSAGE(name << ": " << t.certified << " certified, " << t.near_bound << " within 4x of the bound, "
                             << t.wrong << " wrong");
   };
-  report("cross static filter", cross_static, 100);
-  // Stage 1b answers only when no operation rounded, so its answers are exact values, not
-  // certificates near a bound; it must answer on some inputs (exact differences at the origin).
-  report("cross exact-in-double", cross_in_double, 0);
-  report("cross_sign Filtered", cross_whole, 100);
-  report("crossing_side semi-static", side_semi_static, 100);
-  report("crossing_side running error", side_running, 100);
-  report("crossing_side Filtered", side_whole, 100);
+  for (std::size_t m = 0; m < rounding_modes.size(); ++m) {
+    report(std::string("cross static filter, rounding ") + mode_name(rounding_modes[m]), cross_static[m], 100);
+    report(std::string("crossing_side semi-static, rounding ") + mode_name(rounding_modes[m]), side_semi_static[m], 100);
+  }
+  report("cross_sign staged", cross_whole, 100);
+  report("crossing_side staged", side_whole, 100);
+  report("cross_sign staged, upward after a fallback", cross_after_fallback, 100);
+  report("crossing_side staged, upward after a fallback", side_after_fallback, 100);
 }
 
 BOOST_AUTO_TEST_CASE(crossing_side_matches_exact_reference) {
@@ -551,11 +613,11 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   const Point2 p{0.1, 0.2}, q{0.7, -0.3};
   const Point2 well_separated{0.4, 0.9};  // |det| ~ 0.4, far above the bound ~1e-16
   // Exactly collinear points whose products round (0.1 and 0.7 have full 53-bit significands;
-  // c = 2 b exactly): fl(det) is zero but the bound is not, and no stage in double can certify
-  // the zero, so the filter must fall back to GMP.
+  // c = 2 b exactly): fl(det) is zero but the bound is not, and the interval of a rounded
+  // product is not a point, so only the exact stage can certify the zero.
   const Point2 a{0.0, 0.0}, b{0.1, 0.7}, c{0.2, 1.4};
   // Exactly collinear dyadic points: every difference and product is exact in double, so the
-  // exact-in-double stage settles the zero without GMP.
+  // interval stage computes the point interval [0, 0] and settles the zero without Mpzf.
   const Point2 da{0.375, 0.125}, db{0.875, 0.375}, dc{1.625, 0.75};
 
   rk::reset_predicate_counters();
@@ -563,24 +625,27 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   auto counted = rk::predicate_counters();
 #if ROCKCONTACT_PREDICATE_STATS
   BOOST_TEST(counted.calls[cross] == n);
+  BOOST_TEST(counted.interval_fallbacks[cross] == 0u);
   BOOST_TEST(counted.fallbacks[cross] == 0u);
 
   rk::reset_predicate_counters();
   for (std::uint64_t i = 0; i < n; ++i) BOOST_TEST((rk::orientation<rk::Filtered>(a, b, c) == Sign::zero));
   counted = rk::predicate_counters();
   BOOST_TEST(counted.calls[cross] == n);
+  BOOST_TEST(counted.interval_fallbacks[cross] == n);
   BOOST_TEST(counted.fallbacks[cross] == n);
 
   rk::reset_predicate_counters();
   for (std::uint64_t i = 0; i < n; ++i) BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
   counted = rk::predicate_counters();
   BOOST_TEST(counted.calls[cross] == n);
+  BOOST_TEST(counted.interval_fallbacks[cross] == n);
   BOOST_TEST(counted.fallbacks[cross] == 0u);
 
-  // Axis-aligned collinear: the exact-zero shortcut, no fallback.
+  // Axis-aligned collinear: the exact-zero shortcut of the filter, no fallback.
   rk::reset_predicate_counters();
   BOOST_TEST((rk::orientation<rk::Filtered>({0.1, 0.3}, {0.1, 0.7}, {0.1, -5.0}) == Sign::zero));
-  BOOST_TEST(rk::predicate_counters().fallbacks[cross] == 0u);
+  BOOST_TEST(rk::predicate_counters().interval_fallbacks[cross] == 0u);
 
   // crossing_side: one cross call (the sign of D) and one crossing_side call.
   const auto lines = concurrent_lines({0.375, -1.25});
@@ -590,47 +655,46 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   counted = rk::predicate_counters();
   BOOST_TEST(counted.calls[cross] == 1u);
   BOOST_TEST(counted.calls[side] == 1u);
-  BOOST_TEST(counted.total_fallbacks() == 0u);
+  BOOST_TEST(counted.total_interval_fallbacks() == 0u);
 
+  // Three dyadic lines through one point: the semi-static filter cannot certify the zero, the
+  // interval stage does (exact operations), Mpzf is not needed.
   rk::reset_predicate_counters();
   BOOST_TEST((rk::crossing_side<rk::Filtered>(lines[0], lines[1], lines[2]) == Sign::zero));
   counted = rk::predicate_counters();
   BOOST_TEST(counted.calls[side] == 1u);
-  BOOST_TEST(counted.fallbacks[side] == 1u);
+  BOOST_TEST(counted.interval_fallbacks[side] == 1u);
+  BOOST_TEST(counted.fallbacks[side] == 0u);
 
   // A crossing on a line collinear with c (a stacked block's side along the side of the block
   // below): c's points are 4 and 1 times (0.1, 0.7), b's 0 and 2 times, all exactly on one
-  // line, and their products round, so neither filter certifies the zero. Stage 1c settles it,
-  // with b or with a along c, without the degree-4 evaluation in GMP.
+  // line, and their products round, so the semi-static filter cannot certify the zero. The
+  // check that b (or a) lies along c settles it before the degree-4 interval and exact stages.
   const Line along{{0.0, 0.0}, {0.2, 1.4}}, c_line{{0.4, 2.8}, {0.1, 0.7}};
   const Line across{{-1.0, 0.33}, {1.3, 0.29}};
   BOOST_TEST_REQUIRE(exact_crossing_side(across, along, c_line) == Sign::zero);
   BOOST_TEST(!rkd::crossing_side_semi_static(across, along, c_line).has_value());
-  BOOST_TEST(!rkd::certain_sign(rkd::crossing_side_formula<rkd::ErrorBounded>(
-                                    across, along, c_line,
-                                    [](double x, double y) { return rkd::ErrorBounded::difference(x, y); }))
-                  .has_value());
   rk::reset_predicate_counters();
   BOOST_TEST((rk::crossing_side<rk::Filtered>(across, along, c_line) == Sign::zero));
   BOOST_TEST((rk::crossing_side<rk::Filtered>(along, across, c_line) == Sign::zero));
-  BOOST_TEST(rk::predicate_counters().fallbacks[side] == 0u);
+  BOOST_TEST(rk::predicate_counters().interval_fallbacks[side] == 0u);
 
-  // Exact and Float count calls but never fall back.
+  // Exact shares the staged evaluation (a sign has one exact value); Float never falls back.
   rk::reset_predicate_counters();
   BOOST_TEST((rk::orientation<rk::Exact>(a, b, c) == Sign::zero));
-  BOOST_TEST((rk::crossing_side<rk::Exact>(lines[0], lines[1], lines[2]) == Sign::zero));
   static_cast<void>(rk::orientation<rk::Float>(a, b, c));
   static_cast<void>(rk::crossing_side<rk::Float>(lines[0], lines[1], lines[2]));
   counted = rk::predicate_counters();
-  BOOST_TEST(counted.calls[cross] == 4u);
-  BOOST_TEST(counted.calls[side] == 2u);
-  BOOST_TEST(counted.total_fallbacks() == 0u);
+  BOOST_TEST(counted.calls[cross] == 3u);
+  BOOST_TEST(counted.calls[side] == 1u);
+  BOOST_TEST(counted.total_fallbacks() == 1u);
 
   // Difference of snapshots attributes work to a block.
   const auto before = rk::predicate_counters();
   static_cast<void>(rk::orientation<rk::Filtered>(a, b, c));
   const auto spent = rk::predicate_counters() - before;
   BOOST_TEST(spent.total_calls() == 1u);
+  BOOST_TEST(spent.total_interval_fallbacks() == 1u);
   BOOST_TEST(spent.total_fallbacks() == 1u);
 #else
   BOOST_TEST(counted.total_calls() == 0u);
@@ -643,4 +707,68 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
   static_cast<void>(cross);
   static_cast<void>(side);
 #endif
+}
+
+// The rounding mode around the interval stage. Outside a PredicateScope a fallback restores
+// round to nearest at once; inside one, the first fallback leaves the FPU rounding upward until
+// the outermost scope ends, also when the scope ends by an exception. The collinear dyadic
+// points need the interval stage (see counters_count_calls_and_fallbacks).
+BOOST_AUTO_TEST_CASE(predicate_scope_switches_once_and_restores) {
+  const Point2 da{0.375, 0.125}, db{0.875, 0.375}, dc{1.625, 0.75};
+  BOOST_TEST_REQUIRE(!rounding_upward());
+  BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
+  BOOST_TEST(!rounding_upward());
+  {
+    const rk::PredicateScope outer;
+    BOOST_TEST((rk::orientation<rk::Filtered>({0, 0}, {1, 0}, {0, 1}) == Sign::positive));
+    BOOST_TEST(!rounding_upward());  // the filter answered: no switch
+    {
+      const rk::PredicateScope inner;
+      BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
+      BOOST_TEST(rounding_upward());
+    }
+    BOOST_TEST(rounding_upward());  // the outer scope is still open
+    // Filters and later fallbacks under upward rounding still answer exactly.
+    BOOST_TEST((rk::orientation<rk::Filtered>({0.1, 0.2}, {0.7, -0.3}, {0.4, 0.9}) == Sign::positive));
+    BOOST_TEST((rk::orientation<rk::Filtered>({0.0, 0.0}, {0.1, 0.7}, {0.2, 1.4}) == Sign::zero));
+  }
+  BOOST_TEST(!rounding_upward());
+  try {
+    const rk::PredicateScope scope;
+    static_cast<void>(rk::orientation<rk::Filtered>(da, db, dc));
+    throw std::runtime_error("leave the scope");
+  } catch (const std::runtime_error&) {
+  }
+  BOOST_TEST(!rounding_upward());
+}
+
+// Checked: the staged and the exact sign agree on every input family (no throw), and a
+// disagreement report names the predicate, both signs and the input in hexadecimal floats.
+BOOST_AUTO_TEST_CASE(checked_agrees_and_reports_with_full_input) {
+  Generator g(seed_for("checked_agrees_and_reports_with_full_input", 20261126));
+  std::size_t checked = 0;
+  for (const auto& [name, inputs] : cross_families(g, 500)) {
+    for (const CrossInput& c : inputs) {
+      BOOST_TEST((rk::cross_sign<rk::Checked>(c.p0, c.p1, c.q0, c.q1) == sign(exact_cross(c.p0, c.p1, c.q0, c.q1))));
+      ++checked;
+    }
+  }
+  for (const auto& [name, inputs] : crossing_side_families(g, 500)) {
+    for (const SideInput& s : inputs) {
+      BOOST_TEST((side_under<rk::Checked>(s) == exact_crossing_side(s.a, s.b, s.c)));
+      ++checked;
+    }
+  }
+  BOOST_TEST(checked > 5000u);
+  try {
+    rkd::cross_sign_disagrees({0.1, 0}, {1, 0}, {0, 0}, {0, -0x1p-1074}, Sign::zero, Sign::negative);
+    BOOST_FAIL("no PolicyDisagreement thrown");
+  } catch (const rk::PolicyDisagreement& e) {
+    const std::string what = e.what();
+    BOOST_TEST_INFO(what);
+    BOOST_TEST(what.find("cross_sign staged sign 0 but exact sign -1") != std::string::npos);
+    BOOST_TEST_INFO(what);
+    BOOST_TEST(what.find("[0x1.999999999999ap-4, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x0p+0, 0x0p+0, -0x0.0000000000001p-1022]") !=
+               std::string::npos);
+  }
 }

@@ -3,7 +3,7 @@
 //
 // Input (every field checked; unknown fields are errors, at the top level and in each pair):
 //   {"kn": Pa > 0, "H": m > 0,
-//    "policy": "float" | "filtered" | "exact"     (optional, default filtered),
+//    "policy": "float" | "filtered" | "exact" | "checked"  (optional, default filtered),
 //    "demarcation": "paper" | "exact"              (optional, default exact),
 //    "pairs": [{"id": unique string, "cp": [[x, y], ...], "tp": [[x, y], ...]}, ...]}
 //

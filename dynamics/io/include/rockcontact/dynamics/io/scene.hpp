@@ -29,7 +29,7 @@
 //                "cohesion": Pa >= 0                    (optional, default 0)
 //                "damping_ratio": zeta >= 0             (optional, default 0: no contact
 //                                                        dashpots; dda2d.hpp)
-//                "policy": "float" | "filtered" | "exact"          (optional, default filtered)
+//                "policy": "float" | "filtered" | "exact" | "checked"  (optional, default filtered)
 //                "demarcation": "paper" | "exact"},                (optional, default exact)
 //    "blocks": [{"id": unique string, "material": a name of "materials",
 //                "vertices": [[x, y], ...] m, CCW, simple, no collinear vertex (a

@@ -38,6 +38,8 @@
 //   |fl(t0_c + fl(s' fl(d_c))) - (t0_c + s' d_c)| <= (2u + u^2) |d_c| + u |X'_c| + 2^-1074.
 //   Float     X in double, no bound (what a plain DEM code does); s clamped to [0, 1].
 //   Exact     X exact, each coordinate rounded to nearest.
+//   Checked   as Filtered (Checked compares signs; a construction has no single right double).
+// The construction rounds to nearest: it is never evaluated inside a PredicateScope.
 // kernel/2d/tests/crossing_point_test.cpp re-derives the bound against GMP on near-parallel input.
 
 #include <optional>

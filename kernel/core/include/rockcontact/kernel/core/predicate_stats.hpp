@@ -1,10 +1,12 @@
 #pragma once
-// Thread-local counters of predicate calls and exact fallbacks.
+// Thread-local counters of predicate calls and of their fallbacks, per stage.
 //
-// Every filtered predicate counts its calls and the calls whose floating-point filter could
-// not certify the sign (fallbacks). The counters are per thread, cost two increments of a
-// thread-local array, and compile to nothing when ROCKCONTACT_PREDICATE_STATS is 0. Read them
-// with predicate_counters(), difference two snapshots to attribute work to a block of code.
+// Every staged predicate (kernel/core/detail/staged_sign.hpp) counts its calls, the calls
+// whose double filter could not certify the sign (interval_fallbacks: the interval stage ran)
+// and the calls whose interval could not either (fallbacks: the exact stage ran). The counters
+// are per thread, cost an increment of a thread-local array, and compile to nothing when
+// ROCKCONTACT_PREDICATE_STATS is 0. Read them with predicate_counters(), difference two
+// snapshots to attribute work to a block of code.
 
 #include <array>
 #include <cstddef>
@@ -23,11 +25,17 @@ inline constexpr std::size_t predicate_kind_count = static_cast<std::size_t>(Pre
 
 struct PredicateCounters {
   std::array<std::uint64_t, predicate_kind_count> calls{};
-  std::array<std::uint64_t, predicate_kind_count> fallbacks{};
+  std::array<std::uint64_t, predicate_kind_count> interval_fallbacks{};  // reached the interval stage
+  std::array<std::uint64_t, predicate_kind_count> fallbacks{};           // reached the exact stage
 
   std::uint64_t total_calls() const {
     std::uint64_t sum = 0;
     for (auto c : calls) sum += c;
+    return sum;
+  }
+  std::uint64_t total_interval_fallbacks() const {
+    std::uint64_t sum = 0;
+    for (auto c : interval_fallbacks) sum += c;
     return sum;
   }
   std::uint64_t total_fallbacks() const {
@@ -38,9 +46,18 @@ struct PredicateCounters {
   friend PredicateCounters operator-(PredicateCounters a, const PredicateCounters& b) {
     for (std::size_t i = 0; i < predicate_kind_count; ++i) {
       a.calls[i] -= b.calls[i];
+      a.interval_fallbacks[i] -= b.interval_fallbacks[i];
       a.fallbacks[i] -= b.fallbacks[i];
     }
     return a;
+  }
+  PredicateCounters& operator+=(const PredicateCounters& b) {
+    for (std::size_t i = 0; i < predicate_kind_count; ++i) {
+      calls[i] += b.calls[i];
+      interval_fallbacks[i] += b.interval_fallbacks[i];
+      fallbacks[i] += b.fallbacks[i];
+    }
+    return *this;
   }
 };
 
@@ -50,6 +67,11 @@ inline thread_local PredicateCounters thread_counters;
 inline void count_call([[maybe_unused]] PredicateKind kind) {
 #if ROCKCONTACT_PREDICATE_STATS
   ++thread_counters.calls[static_cast<std::size_t>(kind)];
+#endif
+}
+inline void count_interval_fallback([[maybe_unused]] PredicateKind kind) {
+#if ROCKCONTACT_PREDICATE_STATS
+  ++thread_counters.interval_fallbacks[static_cast<std::size_t>(kind)];
 #endif
 }
 inline void count_fallback([[maybe_unused]] PredicateKind kind) {

@@ -1,8 +1,8 @@
 #pragma once
 // FT-generic constructions shared by the kernel and the contact layer. FT is double (Float,
-// Filtered) or mpq_class (Exact); with mpq_class every operation here is exact except
-// NumberOps::sqrt. Nothing here decides anything: callers have already fixed the combinatorics
-// with exact predicates.
+// Filtered, Checked) or ExactRational (Exact, exact_number.hpp); with ExactRational every
+// operation here is exact except NumberOps::sqrt. Nothing here decides anything: callers have
+// already fixed the combinatorics with exact predicates.
 
 #include <span>
 #include <type_traits>
@@ -41,7 +41,7 @@ FT cross(const FT& ux, const FT& uy, const FT& vx, const FT& vy) {
 // |t1 - t0| times the error of s, which grows as the two lines approach parallel (1 / sin of
 // their angle). When both cross products round to zero (lines parallel to within rounding) s
 // is 0 / 0: NaN fails every comparison, so the clamp is written to send it to 0, the segment's
-// start, as good as any point of it. In mpq_class the point is exact.
+// start, as good as any point of it. In ExactRational the point is exact.
 template <class FT>
 PointT<FT> construct_crossing(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1) {
   using Ops = NumberOps<FT>;

@@ -105,7 +105,7 @@ void edge_distance_functions(const Poly& poly, const PointT<FT>& a, const PointT
 // the breakpoint between hull neighbours i, j is t = (alpha_j - alpha_i) / (beta_i - beta_j).
 // Every decision is a comparison of two coefficients or the orientation of three dual points,
 // evaluated exactly on the coefficients as computed (FT = double: the Policy's orientation, so
-// Filtered decides exactly on those doubles; FT = mpq_class: exact rationals).
+// Filtered decides exactly on those doubles; FT = ExactRational: exact rationals).
 //
 // Why not decide on the breakpoints themselves: at a point where three or more edge-distance
 // lines meet (exactly concurrent lines: a lattice polygon's medial axis has such vertices) the

@@ -1,7 +1,7 @@
 #pragma once
-// The predicate formulas, written once and generic over the number type T, so the filter
-// (ErrorBounded), the naive face (double) and the exact path (GMP rationals) evaluate the same
-// expression and cannot drift apart. `Diff` builds a T from the difference of two input
+// The predicate formulas, written once and generic over the number type T, so the naive face
+// (double), the interval stage and the exact stage (CGAL::Mpzf) evaluate the same expression
+// and cannot drift apart. `Diff` builds a T from the difference of two input
 // doubles; every formula reads the *original* input coordinates, never a rounded derived point.
 
 #include "rockcontact/kernel/2d/point.hpp"

@@ -1,12 +1,19 @@
 #pragma once
-// GMP rationals for the exact paths. Included by kernel/contact .cpp files only, never by a
-// public header, so users of the library do not compile against gmpxx.
+// The Exact policy's construction number type: CGAL::Exact_rational. Included by kernel and
+// contact .cpp files only, never by a public header, so users do not compile against CGAL.
 //
-// NumberOps<FT> gives the few operations the FT-generic constructions need beyond + - * /:
-// sqrt (the potential divides by edge lengths, the only irrational quantity; for rationals it
-// is evaluated at 256 bits, i.e. a relative error below 1e-76) and conversion to double.
+// NumberOps<Exact_rational> gives the few operations the FT-generic constructions need beyond
+// + - * /:
+//   to_double  round to nearest, ties to even, from CGAL's tight enclosure (to_interval) and
+//              one exact comparison with the midpoint of the two candidate doubles;
+//   sqrt       the only irrational operation (the potential divides by edge lengths): MPFR
+//              (CGAL::Gmpfr) at exact_sqrt_precision bits, round to nearest twice (the
+//              rational to MPFR, then the root), so the relative error is below 2^-255; the
+//              result is a dyadic rational and the computation stays exact from there on.
 
-#include <gmpxx.h>
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Gmpfr.h>
+#include <CGAL/Gmpq.h>
 
 #include <bit>
 #include <cmath>
@@ -18,43 +25,38 @@
 
 namespace rockcontact::kernel::detail {
 
+using ExactRational = CGAL::Exact_rational;
+
+// MPFR's square root reads the rational through GMP's mpq interface.
+static_assert(std::is_same_v<ExactRational, mpq_class>,
+              "CGAL must be configured with gmpxx (CGAL_USE_GMPXX), as the kernel's CMake does");
+
+inline constexpr long exact_sqrt_precision = 256;  // bits
+
 template <>
-struct NumberOps<mpq_class> {
-  static mpq_class from(double x) { return mpq_class(x); }
-  // Round to nearest, ties to even. mpq_get_d truncates toward zero, so the nearest double
-  // is either its answer or the next double away from zero; the exact errors decide.
-  static double to_double(const mpq_class& x) {
-    const double truncated = x.get_d();
-    if (sgn(x) == 0 || !std::isfinite(truncated)) return truncated;
-    const double away = std::nextafter(truncated, sgn(x) > 0 ? HUGE_VAL : -HUGE_VAL);
-    if (!std::isfinite(away)) return truncated;
-    const mpq_class error_truncated = ::abs(x - mpq_class(truncated));
-    const mpq_class error_away = ::abs(x - mpq_class(away));
-    const int c = cmp(error_away, error_truncated);
-    if (c < 0) return away;
-    if (c == 0 && (std::bit_cast<std::uint64_t>(truncated) & 1u) != 0) return away;
-    return truncated;
+struct NumberOps<ExactRational> {
+  static ExactRational from(double x) { return ExactRational(x); }
+  static double to_double(const ExactRational& x) {
+    const auto [lo, hi] = CGAL::to_interval(x);
+    if (lo == hi || !std::isfinite(lo) || !std::isfinite(hi)) return CGAL::sign(x) > 0 ? hi : lo;
+    const ExactRational midpoint = (ExactRational(lo) + ExactRational(hi)) / 2;
+    const CGAL::Comparison_result c = CGAL::compare(x, midpoint);
+    if (c == CGAL::SMALLER) return lo;
+    if (c == CGAL::LARGER) return hi;
+    return (std::bit_cast<std::uint64_t>(lo) & 1u) == 0 ? lo : hi;  // a tie: the even one
   }
-  static mpq_class abs(const mpq_class& x) { return ::abs(x); }
-  static mpq_class sqrt(const mpq_class& x) {
-    if (sgn(x) <= 0) return mpq_class(0);
-    mpf_class f(x, 256);
-    mpf_class r(0, 256);
-    mpf_sqrt(r.get_mpf_t(), f.get_mpf_t());
-    return mpq_class(r);
+  static ExactRational abs(const ExactRational& x) { return CGAL::abs(x); }
+  static ExactRational sqrt(const ExactRational& x) {
+    if (CGAL::sign(x) <= 0) return ExactRational(0);
+    CGAL::Gmpfr value(0, exact_sqrt_precision);
+    mpfr_set_q(value.fr(), x.get_mpq_t(), MPFR_RNDN);
+    const CGAL::Gmpq root(value.sqrt(exact_sqrt_precision, std::round_to_nearest));
+    return ExactRational(root.mpq());
   }
 };
 
-// Returns mpq_class, not a GMP expression template (which would dangle its temporaries).
-inline auto exact_diff = [](double a, double b) -> mpq_class { return mpq_class(a) - mpq_class(b); };
-
-}  // namespace rockcontact::kernel::detail
-
-namespace rockcontact::kernel::detail {
-
 // The number type a policy constructs in.
 template <class Policy>
-using ConstructionType =
-    std::conditional_t<Policy::kind == PolicyKind::exact, mpq_class, double>;
+using ConstructionType = std::conditional_t<Policy::kind == PolicyKind::exact, ExactRational, double>;
 
 }  // namespace rockcontact::kernel::detail
