@@ -4,6 +4,7 @@
 
 #include "rockcontact/kernel/2d/detail/constructions.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
+#include "rockcontact/kernel/core/detail/rounded_quotient.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::kernel {
@@ -39,13 +40,28 @@ std::optional<CertifiedCrossing> crossing_in_double(const Point2& p, const Point
 
 namespace {
 
+// X - origin rounded to nearest, each coordinate once. With l = q - p, d = t1 - t0, w = p - t0,
+// N = l x w and D = l x d, X = t0 + (N / D) d, so X_c - o_c = ((t0_c - o_c) D + N d_c) / D: a
+// quotient of polynomials of the input doubles, evaluated in Mpzf and rounded by
+// rounded_quotient without an exact division. Only where that cannot round (overflow) are the
+// coordinates constructed in exact rationals.
 Point2 crossing_rounded_exactly(const Point2& p, const Point2& q, const Point2& t0, const Point2& t1,
                                 const Point2& origin) {
+  using CGAL::Mpzf;
+  const auto diff = [](double a, double b) { return Mpzf(a) - Mpzf(b); };
+  const Mpzf lx = diff(q.x, p.x), ly = diff(q.y, p.y);
+  const Mpzf dx = diff(t1.x, t0.x), dy = diff(t1.y, t0.y);
+  const Mpzf wx = diff(p.x, t0.x), wy = diff(p.y, t0.y);
+  const Mpzf n = lx * wy - ly * wx;
+  const Mpzf d = lx * dy - ly * dx;
+  const auto x = detail::rounded_quotient(diff(t0.x, origin.x) * d + n * dx, d);
+  const auto y = detail::rounded_quotient(diff(t0.y, origin.y) * d + n * dy, d);
+  if (x && y) return {*x, *y};
   using detail::ExactRational;
-  detail::PointT<ExactRational> x = detail::construct_crossing<ExactRational>(p, q, t0, t1);
-  x.x -= ExactRational(origin.x);
-  x.y -= ExactRational(origin.y);
-  return detail::round(x);
+  detail::PointT<ExactRational> exact = detail::construct_crossing<ExactRational>(p, q, t0, t1);
+  exact.x -= ExactRational(origin.x);
+  exact.y -= ExactRational(origin.y);
+  return detail::round(exact);
 }
 
 }  // namespace
