@@ -18,8 +18,10 @@
 // pairs (the Exact force costs milliseconds per pair; timing a prefix of the pool would bias
 // it). Counters:
 //   per_pair        seconds per pair (wall clock of the passes / pairs; 53.2n = 53.2 ns)
-//   fallback_rate   exact re-evaluations / filtered predicate calls (predicate_counters());
-//                   nonzero only under Filtered (Float never falls back, Exact always is exact)
+//   interval_rate   calls whose double filter was unsure (the interval stage ran) / predicate
+//                   calls (predicate_counters()); zero under Float, which has no stages
+//   fallback_rate   calls whose interval was unsure too (the exact stage ran) / predicate calls;
+//                   Exact shares Filtered's staged signs, so both show the same rates
 //   predicates      predicate calls per pair
 // Workspaces are reused and warmed on the pool before timing, so the Float and Filtered paths
 // allocate nothing in the timed loop; the Exact path allocates its GMP numbers.

@@ -25,9 +25,9 @@
 // Filtered fell back to exact arithmetic) is printed in the context and stored in the JSON.
 //
 // One iteration is a pass over the whole pool, so every contender is timed on the same pairs;
-// per_pair (CPU seconds per pair; 53.2n = 53.2 ns) is the figure to compare. fallback_rate is
-// exact re-evaluations per predicate call (kernel/predicate_stats.hpp), nonzero only under
-// Filtered.
+// per_pair (CPU seconds per pair; 53.2n = 53.2 ns) is the figure to compare. interval_rate and
+// fallback_rate are the calls that reached the interval and the exact stage, per predicate call
+// (kernel/core/predicate_stats.hpp); Exact shares Filtered's staged signs.
 // Every input is converted to each contender's own types before timing (Box2D's Set computes a
 // hull and normals; CGAL's polygons hold lazy exact points), so only the query is timed.
 // Box2D's polygon skin (m_radius, 0.01 m) is set to zero so that it answers the same geometric

@@ -151,7 +151,8 @@ struct FamilyStats {
     return filtered_verdict + filtered_ip + filtered_points + filtered_force;
   }
   std::size_t property_violations() const;
-  double fallback_rate() const;      // Filtered fallbacks / calls; 0 without calls
+  double interval_fallback_rate() const;  // Filtered interval-stage entries / calls; 0 without calls
+  double fallback_rate() const;           // Filtered exact-stage entries / calls; 0 without calls
   double paper_error_max() const;    // 0 without samples
   double paper_error_median() const;
   double paper_error_p99() const;            // 99th percentile
@@ -171,7 +172,8 @@ struct CampaignResult {
 CampaignResult run_campaign(const CampaignOptions& options);
 
 // The markdown table: family | cases | Float disagreements | Filtered disagreements | crashes |
-// fallback rate | paper-vs-exact force error | property violations | seconds, plus a total row.
+// fallback rate (interval / exact) | paper-vs-exact force error | property violations | seconds,
+// plus a total row.
 std::string format_table(const CampaignResult& result);
 // Per-family details: verdict counts, comparisons made, worst error/bound ratios, touch pushes,
 // violations by property; then every kept reproducer.
