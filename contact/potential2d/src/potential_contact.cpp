@@ -33,24 +33,21 @@ void evaluate_checked(const ConvexPolygon& cp, const ConvexPolygon& tp,
                       const PotentialContactParams& params, PairWorkspace& workspace,
                       PairResult& out) {
   const kernel::PredicateCounters before = kernel::predicate_counters();
-  out.status = kernel::classify_overlap<Policy>(cp, tp);
   out.ip.clear();
   out.area = 0.0;
   out.force = {};
   out.point.reset();
-  out.ip_features.vertices.clear();
-  out.ip_features.edges.clear();
-  if (out.status == Overlap::overlap) {
-    kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
-    if (!out.ip_features.empty()) {
-      const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
-                                              params.small_edge_fraction * params.H};
-      const kernel::PotentialResultant r = kernel::integrate_potential<Policy>(
-          cp, tp, out.ip_features, potential, workspace.force, out.ip);
-      out.area = r.area;
-      out.force = r.force;
-      out.point = r.point;
-    }
+  // The clip decides the verdict too (intersection_polygon.hpp), equal to classify_overlap's
+  // under Filtered and Exact, so the pair is classified once.
+  out.status = kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
+  if (!out.ip_features.empty()) {
+    const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
+                                            params.small_edge_fraction * params.H};
+    const kernel::PotentialResultant r = kernel::integrate_potential<Policy>(
+        cp, tp, out.ip_features, potential, workspace.force, out.ip);
+    out.area = r.area;
+    out.force = r.force;
+    out.point = r.point;
   }
   const kernel::PredicateCounters spent = kernel::predicate_counters() - before;
   out.predicates = spent.total_calls();
