@@ -13,15 +13,23 @@ using Node = ClipWorkspace::Node;
 
 // Line ids: 0..n-1 are CP's edge lines (vertex k to k+1), n..n+m-1 TP's. Vertex ids: 0..n-1
 // CP's vertices, n..n+m-1 TP's; a node for an input vertex stores line_a = -1 - vertex id.
+// Raw pointers and sizes: the clip reads them in its innermost loop.
 struct Lines {
-  const ConvexPolygon& cp;
-  const ConvexPolygon& tp;
+  const Point2* cp;
+  const Point2* tp;
+  std::int32_t n;
+  std::int32_t m;
 
-  std::int32_t n() const { return static_cast<std::int32_t>(cp.size()); }
+  Lines(const ConvexPolygon& a, const ConvexPolygon& b)
+      : cp(a.vertices().data()), tp(b.vertices().data()),
+        n(static_cast<std::int32_t>(a.size())), m(static_cast<std::int32_t>(b.size())) {}
+
+  std::int32_t next_cp(std::int32_t k) const { return k + 1 == n ? 0 : k + 1; }
+  std::int32_t next_tp(std::int32_t j) const { return j + 1 == m ? 0 : j + 1; }
   Line line(std::int32_t id) const {
-    if (id < n()) return {cp[id], cp[cp.next(id)]};
-    const std::size_t j = id - n();
-    return {tp[j], tp[tp.next(j)]};
+    if (id < n) return {cp[id], cp[next_cp(id)]};
+    const std::int32_t j = id - n;
+    return {tp[j], tp[next_tp(j)]};
   }
 };
 
@@ -31,20 +39,21 @@ std::int32_t vertex_id(const Node& node) { return -1 - node.line_a; }
 // The node where clip line k meets the line of an edge crossing it. Two adjacent CP lines
 // meet at a CP vertex, which is then kept as an input vertex (cheaper, exact predicates).
 Node make_crossing(const Lines& lines, std::int32_t k, std::int32_t edge_line) {
-  const std::int32_t n = lines.n();
-  if (edge_line < n) {
-    if (edge_line == (k + n - 1) % n) return {-1 - k, -1, -1};
-    if (edge_line == (k + 1) % n) return {-1 - (k + 1) % n, -1, -1};
+  if (edge_line < lines.n) {
+    if (edge_line == (k == 0 ? lines.n - 1 : k - 1)) return {-1 - k, -1, -1};
+    if (edge_line == lines.next_cp(k)) return {-1 - lines.next_cp(k), -1, -1};
   }
   return {k, edge_line, -1};
 }
 
-constexpr signed char unknown_side = 2;
+using MemoSide = ClipWorkspace::MemoSide;
 
-Sign to_sign(signed char side) { return static_cast<Sign>(side); }
-
-// Sides of nodes with respect to CP lines, each answer the one `orientation` or
-// `crossing_side` would give under exact signs, and each orientation evaluated at most once.
+// Sides of nodes with respect to one CP line k, each the answer `orientation` or
+// `crossing_side` would give under exact signs, each orientation evaluated at most once per
+// pair. Only TP's vertices are asked more than once (by their own node and by the crossings on
+// their two edges), and only by the line clipping at the time, so their memo is one entry per
+// TP vertex holding the line it was computed for; a stale line means unknown, so moving on
+// to the next line clears nothing.
 //
 // A crossing X of CP line i with TP edge j lies strictly inside the segment [t_j, t_{j+1}]:
 // it was made by clip i on an edge of S_{i-1} labelled with TP line j whose end nodes lie
@@ -61,137 +70,92 @@ Sign to_sign(signed char side) { return static_cast<Sign>(side); }
 // argument does not apply to a crossing's CP line i: X need not lie within CP's edge i (later
 // clips may cut it), so the crossing of two CP lines keeps crossing_side.
 template <NumberPolicy Policy>
-class Sides {
- public:
-  // `table` has room for n m entries.
-  Sides(const Lines& lines, signed char* table) : lines_(lines), table_(table) {
-    const std::size_t entries = lines.cp.size() * lines.tp.size();
-    std::fill(table_, table_ + entries, unknown_side);
+struct LineSides {
+  const Lines& lines;
+  std::int32_t k;
+  Line clip;
+  MemoSide* memo;  // m entries
+
+  LineSides(const Lines& l, std::int32_t line, MemoSide* tp_memo)
+      : lines(l), k(line), clip(l.line(line)), memo(tp_memo) {}
+
+  Sign tp_vertex(std::int32_t j) const {
+    MemoSide& entry = memo[j];
+    if (entry.line != k) entry = {k, orientation<Policy>(clip.p, clip.q, lines.tp[j])};
+    return entry.side;
   }
 
-  Sign operator()(const Node& node, std::int32_t k) {
-    const std::int32_t n = lines_.n();
+  Sign operator()(const Node& node) const {
+    const std::int32_t n = lines.n;
     if (is_vertex(node)) {
       const std::int32_t id = vertex_id(node);
-      if (id >= n) return tp_vertex(id - n, k);
+      if (id >= n) return tp_vertex(id - n);
       // CP vertex: ConvexPolygon::make certified, with exact predicates, that every turn of CP
       // is strictly left and that its edges wind once; then each vertex lies strictly left of
       // every edge line not through it. Vertex id is on lines id - 1 and id.
-      return id == k || id == static_cast<std::int32_t>(lines_.cp.next(k)) ? Sign::zero : Sign::positive;
+      return id == k || id == lines.next_cp(k) ? Sign::zero : Sign::positive;
     }
     if (node.line_b >= n) {
-      const auto j = static_cast<std::size_t>(node.line_b - n);
-      const Sign a = tp_vertex(static_cast<std::int32_t>(j), k);
-      const Sign b = tp_vertex(static_cast<std::int32_t>(lines_.tp.next(j)), k);
+      const std::int32_t j = node.line_b - n;
+      const Sign a = tp_vertex(j), b = tp_vertex(lines.next_tp(j));
       if (a * b != Sign::negative) return sign_of(static_cast<int>(a) + static_cast<int>(b));
     } else if (node.line_a == k || node.line_b == k) {
       return Sign::zero;
     }
-    return crossing_side<Policy>(lines_.line(node.line_a), lines_.line(node.line_b), lines_.line(k));
+    return crossing_side_of(node);
   }
 
- private:
-  Sign tp_vertex(std::int32_t j, std::int32_t k) {
-    signed char& side = table_[static_cast<std::size_t>(k) * lines_.tp.size() + j];
-    if (side == unknown_side) {
-      const Line clip = lines_.line(k);
-      side = static_cast<signed char>(orientation<Policy>(clip.p, clip.q, lines_.tp[j]));
-    }
-    return to_sign(side);
+  // The degree-4 predicate is rarely needed: it stays out of the flattened clip loop.
+  [[gnu::noinline]] Sign crossing_side_of(const Node& node) const {
+    return crossing_side<Policy>(lines.line(node.line_a), lines.line(node.line_b), clip);
   }
-
-  const Lines& lines_;
-  signed char* table_;
 };
 
-// The node set S_k of the header, in the workspace's two node buffers.
+// A node set S_k of the header.
+struct NodeSet {
+  Node* nodes;
+  std::int32_t size;
+};
+
+// One Sutherland-Hodgman step with exact three-valued sides: writes the part of `in` on the
+// left of (or on) clip line k to `out`, the kept nodes and the crossings in order, and returns
+// their number. `out` has room for 2 in.size nodes: each node gives at most itself and one
+// crossing. A set of >= 3 nodes is a closed polygon; one of 2 is a segment, whose edge from
+// the last node back to the first is not an edge. An edge whose two end nodes both lie on
+// line k lies along it and is labelled k.
+// Flattened: the filtered orientation, the common predicate, is inlined into the loop.
 template <NumberPolicy Policy>
-class Clip {
- public:
-  Clip(const Lines& lines, ClipWorkspace& ws)
-      : lines_(lines), ws_(ws), sides_(lines, ws.tp_sides.storage(lines.cp.size() * lines.tp.size())) {
-    const std::size_t m = lines.tp.size();
-    nodes_ = ws_.nodes[0].storage(m);
-    const std::int32_t n = lines.n();
-    for (std::size_t j = 0; j < m; ++j) {
-      const auto id = static_cast<std::int32_t>(j);
-      nodes_[j] = {-1 - (n + id), -1, n + id};
+[[gnu::flatten]] std::int32_t clip_by_line(const LineSides<Policy>& side_of, NodeSet in, Node* out) {
+  const std::int32_t k = side_of.k;
+  const std::int32_t edges = in.size >= 3 ? in.size : in.size - 1;
+  std::int32_t count = 0;
+  bool first_on_k = false, last_on_k = false;
+  const auto push = [&](const Node& node, bool on_k) {
+    if (count == 0) first_on_k = on_k;
+    if (on_k && last_on_k) out[count - 1].edge_line = k;
+    out[count++] = node;
+    last_on_k = on_k;
+  };
+  const Sign first = side_of(in.nodes[0]);
+  Sign side = first;  // of node v
+  for (std::int32_t v = 0; v < in.size; ++v) {
+    const std::int32_t w = v + 1 == in.size ? 0 : v + 1;
+    const Sign next_side = w == 0 ? first : side_of(in.nodes[w]);
+    if (side != Sign::negative) push(in.nodes[v], side == Sign::zero);
+    if (v < edges && side * next_side == Sign::negative) {
+      Node crossing = make_crossing(side_of.lines, k, in.nodes[v].edge_line);
+      crossing.edge_line = in.nodes[v].edge_line;
+      push(crossing, true);
     }
-    size_ = static_cast<std::int32_t>(m);
+    side = next_side;
   }
-
-  std::int32_t size() const { return size_; }
-  const Node* nodes() const { return nodes_; }
-
-  // One Sutherland-Hodgman step with exact three-valued sides: keeps the part of the set on
-  // the left of (or on) clip line k. A set of >= 3 nodes is a closed polygon; one of 2 is a
-  // segment, whose edge from the last node back to the first is not an edge.
-  void by_line(std::int32_t k) {
-    signed char* sides = ws_.node_sides.storage(static_cast<std::size_t>(size_));
-    bool any_negative = false;
-    std::int32_t out_size = 0;
-    for (std::int32_t v = 0; v < size_; ++v) {
-      const Sign s = sides_(nodes_[v], k);
-      sides[v] = static_cast<signed char>(s);
-      any_negative |= s == Sign::negative;
-      out_size += s != Sign::negative;
-    }
-    if (!any_negative) {
-      // Nothing is cut: only edges found along line k change their label.
-      for (std::int32_t v = 0; v < size_; ++v) {
-        if (sides[v] == 0 && sides[next(v)] == 0) nodes_[v].edge_line = k;
-      }
-      return;
-    }
-    const std::int32_t edges = size_ >= 3 ? size_ : size_ - 1;
-    for (std::int32_t v = 0; v < edges; ++v) out_size += sides[v] * sides[next(v)] < 0;
-    if (out_size == 0) {
-      size_ = 0;
-      return;
-    }
-    which_ ^= 1;
-    Node* out = ws_.nodes[which_].storage(static_cast<std::size_t>(out_size));
-    emit(k, sides, edges, out);
-    nodes_ = out;
-  }
-
- private:
-  std::int32_t next(std::int32_t v) const { return v + 1 == size_ ? 0 : v + 1; }
-
-  // Writes the kept nodes and the crossings, in order, to `out`. An edge whose two end nodes
-  // both lie on line k lies along it and is labelled k.
-  void emit(std::int32_t k, const signed char* sides, std::int32_t edges, Node* out) {
-    std::int32_t count = 0;
-    bool first_on_k = false, last_on_k = false;
-    const auto push = [&](const Node& node, bool on_k) {
-      if (count == 0) first_on_k = on_k;
-      if (on_k && last_on_k) out[count - 1].edge_line = k;
-      out[count++] = node;
-      last_on_k = on_k;
-    };
-    for (std::int32_t v = 0; v < size_; ++v) {
-      if (sides[v] >= 0) push(nodes_[v], sides[v] == 0);
-      if (v < edges && sides[v] * sides[next(v)] < 0) {
-        Node crossing = make_crossing(lines_, k, nodes_[v].edge_line);
-        crossing.edge_line = nodes_[v].edge_line;
-        push(crossing, true);
-      }
-    }
-    if (first_on_k && last_on_k) out[count - 1].edge_line = k;
-    size_ = count;
-  }
-
-  const Lines& lines_;
-  ClipWorkspace& ws_;
-  Sides<Policy> sides_;
-  Node* nodes_ = nullptr;
-  std::int32_t size_ = 0;
-  int which_ = 0;  // the buffer nodes_ points into
-};
+  if (first_on_k && last_on_k) out[count - 1].edge_line = k;
+  return count;
+}
 
 // The labels of a clip's >= 3 final nodes.
 void write_labels(const Lines& lines, const Node* nodes, std::int32_t size, IntersectionPolygon& out) {
-  const std::int32_t n = lines.n();
+  const std::int32_t n = lines.n;
   for (std::int32_t v = 0; v < size; ++v) {
     const Node& node = nodes[v];
     IpVertex label;
@@ -225,15 +189,24 @@ void write_labels(const Lines& lines, const Node* nodes, std::int32_t size, Inte
 template <NumberPolicy Policy>
 Overlap compute_intersection_polygon(const ConvexPolygon& cp, const ConvexPolygon& tp,
                                      IntersectionPolygon& out, ClipWorkspace& ws) {
-  const Lines lines{cp, tp};
+  const Lines lines(cp, tp);
+  const std::int32_t n = lines.n, m = lines.m;
   out.vertices.clear();
   out.edges.clear();
-  Clip<Policy> clip(lines, ws);
-  for (std::int32_t k = 0; k < lines.n() && clip.size() > 0; ++k) clip.by_line(k);
-  if (clip.size() == 0) return Overlap::separate;
-  if (clip.size() < 3) return Overlap::touch;
-  write_labels(lines, clip.nodes(), clip.size(), out);
-  assert((Policy::kind == PolicyKind::float_ || out.vertices.size() == static_cast<std::size_t>(clip.size())));
+  MemoSide* const memo = ws.tp_sides.storage(static_cast<std::size_t>(m));
+  std::fill(memo, memo + m, MemoSide{});
+  int buffer = 0;
+  NodeSet set{ws.nodes[buffer].storage(static_cast<std::size_t>(m)), m};
+  for (std::int32_t j = 0; j < m; ++j) set.nodes[j] = {-1 - (n + j), -1, n + j};
+  for (std::int32_t k = 0; k < n && set.size > 0; ++k) {
+    buffer = 1 - buffer;
+    Node* const next = ws.nodes[buffer].storage(2 * static_cast<std::size_t>(set.size));
+    set = {next, clip_by_line(LineSides<Policy>(lines, k, memo), set, next)};
+  }
+  if (set.size == 0) return Overlap::separate;
+  if (set.size < 3) return Overlap::touch;
+  write_labels(lines, set.nodes, set.size, out);
+  assert((Policy::kind == PolicyKind::float_ || out.vertices.size() == static_cast<std::size_t>(set.size)));
   return Overlap::overlap;
 }
 

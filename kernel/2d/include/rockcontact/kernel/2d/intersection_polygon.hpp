@@ -58,6 +58,7 @@
 #include "rockcontact/kernel/2d/detail/inline_buffer.hpp"
 #include "rockcontact/kernel/2d/entrance_block.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/core/sign.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
 
 namespace rockcontact::kernel {
@@ -97,12 +98,16 @@ struct ClipWorkspace {
     std::int32_t line_b = -1;
     std::int32_t edge_line = -1;  // line supporting the edge leaving this node
   };
-  // The node set before and after one clip, the two swapping roles: at most n + m nodes.
-  detail::InlineBuffer<Node, 2 * inline_vertices> nodes[2];
-  // The side of each node of the set being clipped with respect to the clip line.
-  detail::InlineBuffer<signed char, 2 * inline_vertices> node_sides;
-  // The side of TP vertex j with respect to CP line k at [k m + j], filled on demand.
-  detail::InlineBuffer<signed char, inline_vertices * inline_vertices> tp_sides;
+  // The node set before and after one clip, the two swapping roles: at most n + m nodes, but
+  // room for twice the set being clipped, the most a clip can emit whatever the signs.
+  detail::InlineBuffer<Node, 4 * inline_vertices> nodes[2];
+  // The memo of the sides of TP's vertices: entry j holds the side of TP vertex j with
+  // respect to CP line `line` (unknown for any other line).
+  struct MemoSide {
+    std::int32_t line = -1;
+    Sign side = Sign::zero;
+  };
+  detail::InlineBuffer<MemoSide, inline_vertices> tp_sides;
 };
 
 // The IP of cp and tp into `out` (empty unless the pair overlaps) and the overlap verdict,
