@@ -87,12 +87,12 @@ struct LineSides {
 
   Sign operator()(const Node& node) const {
     const std::int32_t n = lines.n;
+    if (node.line_a < -n) return tp_vertex(vertex_id(node) - n);  // the common case
     if (is_vertex(node)) {
-      const std::int32_t id = vertex_id(node);
-      if (id >= n) return tp_vertex(id - n);
       // CP vertex: ConvexPolygon::make certified, with exact predicates, that every turn of CP
       // is strictly left and that its edges wind once; then each vertex lies strictly left of
       // every edge line not through it. Vertex id is on lines id - 1 and id.
+      const std::int32_t id = vertex_id(node);
       return id == k || id == lines.next_cp(k) ? Sign::zero : Sign::positive;
     }
     if (node.line_b >= n) {
@@ -122,21 +122,24 @@ struct NodeSet {
 // their number. `out` has room for 2 in.size nodes: each node gives at most itself and one
 // crossing. A set of >= 3 nodes is a closed polygon; one of 2 is a segment, whose edge from
 // the last node back to the first is not an edge. An edge whose two end nodes both lie on
-// line k lies along it and is labelled k.
-// Flattened: the filtered orientation, the common predicate, is inlined into the loop.
+// line k lies along it and is labelled k. Flattened, so that the filtered orientation, the
+// common predicate, is inlined into the loop.
 template <NumberPolicy Policy>
 [[gnu::flatten]] std::int32_t clip_by_line(const LineSides<Policy>& side_of, NodeSet in, Node* out) {
   const std::int32_t k = side_of.k;
   const std::int32_t edges = in.size >= 3 ? in.size : in.size - 1;
   std::int32_t count = 0;
-  bool first_on_k = false, last_on_k = false;
+  bool last_on_k = false;
   const auto push = [&](const Node& node, bool on_k) {
-    if (count == 0) first_on_k = on_k;
     if (on_k && last_on_k) out[count - 1].edge_line = k;
     out[count++] = node;
     last_on_k = on_k;
   };
   const Sign first = side_of(in.nodes[0]);
+  // The first node written lies on line k unless it is node 0 strictly inside: before any
+  // node is written all are outside, and the first inside one is on the line or preceded by
+  // the crossing entering.
+  const bool first_on_k = first != Sign::positive;
   Sign side = first;  // of node v
   for (std::int32_t v = 0; v < in.size; ++v) {
     const std::int32_t w = v + 1 == in.size ? 0 : v + 1;
