@@ -1,7 +1,8 @@
 // Pair-level micro-benchmarks: the cost of one pair of blocks under each number policy.
 //
 //   classify/<policy>/<pool>      kernel::classify_overlap (the verdict alone)
-//   intersection/<policy>/<pool>  kernel::compute_intersection_polygon + construct_points
+//   intersection/<policy>/<pool>  kernel::compute_intersection_polygon (the verdict and the
+//                                 symbolic IP in one clip) + construct_points
 //   evaluate/<policy>/<pool>      contact::evaluate_pair (verdict, IP, force, contact point)
 //   pair_api/<policy>/<pool>      PairEvaluator::evaluate, the host-facing call: evaluate plus
 //                                 validating both polygons from plain arrays and the

@@ -3,9 +3,9 @@
 // clip, all on the same pairs.
 //
 //   classify/<policy>/<pool>     kernel::classify_overlap (the verdict alone)
-//   overlap_ip/<policy>/<pool>   the verdict, then for overlapping pairs
-//                                compute_intersection_polygon + construct_points (what
-//                                evaluate_pair does before its force)
+//   overlap_ip/<policy>/<pool>   compute_intersection_polygon (the verdict and the symbolic
+//                                IP in one clip), then construct_points for overlapping
+//                                pairs (what evaluate_pair does before its force)
 //   force_exact/<policy>/<pool>  contact::evaluate_pair, exact demarcation
 //   force_paper/<policy>/<pool>  contact::evaluate_pair, paper demarcation
 //   naive_clip/<pool>            examples/naive_clipper/naive_clip.hpp: TP clipped by CP's edge half-planes;
@@ -180,8 +180,8 @@ void overlap_ip(benchmark::State& state, const Pool& pool) {
   std::vector<rk::Point2> points;
   run_passes(state, pool_size, [&](std::size_t i) {
     points.clear();
-    if (rk::classify_overlap<Policy>(pool.cp[i], pool.tp[i]) == rk::Overlap::overlap) {
-      rk::compute_intersection_polygon<Policy>(pool.cp[i], pool.tp[i], ip, workspace);
+    if (rk::compute_intersection_polygon<Policy>(pool.cp[i], pool.tp[i], ip, workspace) ==
+        rk::Overlap::overlap) {
       rk::construct_points<Policy>(pool.cp[i], pool.tp[i], ip, points);
     }
     benchmark::DoNotOptimize(points.data());

@@ -38,17 +38,14 @@ void evaluate_checked(const ConvexPolygon& cp, const ConvexPolygon& tp,
   out.area = 0.0;
   out.force = {};
   out.point.reset();
-  out.ip_features.vertices.clear();
-  out.ip_features.edges.clear();
   {
-    // The verdict and the clip are predicates only: one rounding-mode scope for both.
+    // The clip decides the verdict too (intersection_polygon.hpp), equal to classify_overlap's
+    // under Filtered and Exact, so the pair is classified once. It evaluates predicates only:
+    // one rounding-mode scope for all of them.
     const kernel::PredicateScope scope;
-    out.status = kernel::classify_overlap<Policy>(cp, tp);
-    if (out.status == Overlap::overlap) {
-      kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
-    }
+    out.status = kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
   }
-  if (out.status == Overlap::overlap && !out.ip_features.empty()) {
+  if (!out.ip_features.empty()) {
     const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
                                             params.small_edge_fraction * params.H};
     const kernel::PotentialResultant r = kernel::integrate_potential<Policy>(
