@@ -7,8 +7,10 @@ namespace rockcontact::kernel {
 
 double exit_distance(const ConvexPolygon& polygon, const Point2& p) {
   const detail::PointT<double> q{p.x, p.y};
+  detail::EdgeTable<double> edges;
+  detail::tabulate_edges(polygon, edges);
   detail::LinearPieces<double> f;
-  detail::edge_distance_functions(polygon, q, q, f);
+  detail::edge_distance_functions(polygon, edges, q, q, f);
   return f.at(0.0);
 }
 
@@ -17,8 +19,10 @@ std::vector<double> demarcation_parameters(const ConvexPolygon& polygon, const P
   const detail::PointT<double> pa{a.x, a.y}, pb{b.x, b.y};
   std::vector<double> t;
   if (mode == Demarcation::exact) {
+    detail::EdgeTable<double> edges;
+    detail::tabulate_edges(polygon, edges);
     detail::LinearPieces<double> f;
-    detail::edge_distance_functions(polygon, pa, pb, f);
+    detail::edge_distance_functions(polygon, edges, pa, pb, f);
     detail::envelope_breakpoints<Filtered>(f, t);
   } else {
     detail::paper_breakpoints(polygon, pa, pb, small_edge, t);

@@ -71,11 +71,11 @@ EdgeIntegral<FT> integrate_edge(const Poly& cp, const Poly& tp, const IpEdge& ed
   s.t.push_back(FT(0));
   s.t.push_back(FT(1));
   if (!cp_zero) {
-    kd::edge_distance_functions(cp, p, q, s.cp_distance);
+    kd::edge_distance_functions(cp, s.cp_edges, p, q, s.cp_distance);
     add_demarcation<Policy>(cp, p, q, s.cp_distance, params, s.t);
   }
   if (!tp_zero) {
-    kd::edge_distance_functions(tp, p, q, s.tp_distance);
+    kd::edge_distance_functions(tp, s.tp_edges, p, q, s.tp_distance);
     add_demarcation<Policy>(tp, p, q, s.tp_distance, params, s.t);
   }
   std::sort(s.t.begin(), s.t.end());
@@ -125,6 +125,8 @@ PotentialResultant integrate_force(const Poly& cp, const Poly& tp,
   for (const IpVertex& iv : ip.vertices) v.push_back(vertex_point<Policy, FT>(cp, tp, iv));
   const kd::AreaCentroid<FT> ac = kd::area_centroid<FT>(v);
   const Pt<FT>& c = ac.centroid;
+  kd::tabulate_edges(cp, scratch.cp_edges);
+  kd::tabulate_edges(tp, scratch.tp_edges);
 
   // f = (kn/H) Σ_edges G_e (dy, -dx): (dy, -dx) = n L is the outward normal times the length
   // of a CCW edge (eq. 11, 18). The moment about c is Σ m_e x (dy, -dx) (eq. 17, 20).

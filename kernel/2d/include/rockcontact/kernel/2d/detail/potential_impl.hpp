@@ -80,18 +80,38 @@ FT edge_length(const Poly& poly, std::size_t k) {
   return NumberOps<FT>::sqrt(e.x * e.x + e.y * e.y);
 }
 
+// A polygon's edge vectors and lengths, computed once per pair and read by the distance
+// functions of every IP edge (a square root per polygon edge, not per IP edge and polygon edge).
+template <class FT>
+struct EdgeTable {
+  std::vector<PointT<FT>> edge;
+  std::vector<FT> length;
+};
+
 template <class FT, class Poly>
-void edge_distance_functions(const Poly& poly, const PointT<FT>& a, const PointT<FT>& b,
-                             LinearPieces<FT>& out) {
+void tabulate_edges(const Poly& poly, EdgeTable<FT>& out) {
+  out.edge.resize(poly.size());
+  out.length.resize(poly.size());
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const PointT<FT> e = edge_of<FT>(poly, k);
+    out.length[k] = NumberOps<FT>::sqrt(e.x * e.x + e.y * e.y);
+    out.edge[k] = e;
+  }
+}
+
+// The signed distances alpha_k + t beta_k of the point a + t (b - a) from the lines of
+// `poly`'s edges (positive inside), from its edge table.
+template <class FT, class Poly>
+void edge_distance_functions(const Poly& poly, const EdgeTable<FT>& edges, const PointT<FT>& a,
+                             const PointT<FT>& b, LinearPieces<FT>& out) {
   using Ops = NumberOps<FT>;
   out.alpha.resize(poly.size());
   out.beta.resize(poly.size());
   const FT dx = b.x - a.x, dy = b.y - a.y;
   for (std::size_t k = 0; k < poly.size(); ++k) {
     const Point2 p = poly[k];
-    const PointT<FT> e = edge_of<FT>(poly, k);
-    const FT &ex = e.x, &ey = e.y;
-    const FT len = Ops::sqrt(ex * ex + ey * ey);
+    const FT &ex = edges.edge[k].x, &ey = edges.edge[k].y;
+    const FT& len = edges.length[k];
     out.alpha[k] = cross(ex, ey, FT(a.x - Ops::from(p.x)), FT(a.y - Ops::from(p.y))) / len;
     out.beta[k] = cross(ex, ey, dx, dy) / len;
   }
@@ -275,6 +295,7 @@ void paper_breakpoints(const Poly& poly, const PointT<FT>& a, const PointT<FT>& 
 template <class FT>
 struct ForceScratch {
   std::vector<PointT<FT>> vertices;
+  EdgeTable<FT> cp_edges, tp_edges;
   LinearPieces<FT> cp_distance, tp_distance;
   std::vector<FT> t;
 };
