@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "rockcontact/testing/contact2d.hpp"
+#include "rockcontact/testing/counting_new.hpp"
 
 // The host-facing pair API (pair_contact.hpp) against independent references:
 //   (a) the closed form "corner" of potential_contact_test.cpp (CP = [0,2]×[0,1],
@@ -35,21 +36,8 @@
 #include "rockcontact/kernel/2d/convex_polygon.hpp"
 #include "rockcontact/kernel/2d/entrance_block.hpp"
 
-// Counting replacements of the global allocation functions, for (d). libstdc++'s array and
-// nothrow forms call these two.
-namespace {
-std::atomic<long> heap_allocations{0};
-}  // namespace
-
-// GCC cannot see that these replacements pair malloc with free on purpose.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  heap_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// The allocation counter for (d): rockcontact/testing/counting_new.hpp.
+using rockcontact::testing::heap_allocations;
 
 namespace {
 

@@ -18,6 +18,7 @@
 #include "rockcontact/kernel/2d/predicates.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/testing/contact2d.hpp"
+#include "rockcontact/testing/counting_new.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // The intersection polygon and the verdict of its clip (intersection_polygon.hpp):
@@ -30,21 +31,8 @@
 // Verdicts and labels are combinatorial: both sides of each comparison are decided by exact
 // predicates (Filtered and Exact), so they must be equal, with no tolerance.
 
-// Counting replacements of the global allocation functions, for (d). libstdc++'s array and
-// nothrow forms call these two.
-namespace {
-std::atomic<long> heap_allocations{0};
-}  // namespace
-
-// GCC cannot see that these replacements pair malloc with free on purpose.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  heap_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// The allocation counter for (d): rockcontact/testing/counting_new.hpp.
+using rockcontact::testing::heap_allocations;
 
 namespace rk = rockcontact::kernel;
 using rk::ConvexPolygon;
