@@ -372,13 +372,13 @@ std::vector<ReportScene> report_scenes() {
                                    small_full, small_quick));
   scenes.push_back(converged_scene("5.3 vertex on neighbour edge", "small_edge_neighbour", 0.4,
                                    0.3, small_full, small_quick));
-  // §6: hundreds of blocks. The exact policy's arithmetic costs 0.3 s a step on the collapse
-  // (33 ms on the valley) against ~1 ms filtered, so the sweeps run float and filtered and the
+  // §6: hundreds of blocks. The exact policy's constructions cost 0.18 s a step on the collapse
+  // (30 ms on the valley) against ~1 ms filtered, so the sweeps run float and filtered and the
   // reference is filtered: its predicates decide as the exact policy's, and its constructions
   // differ from the exact ones by rounding, far below the errors of dt and kn.
   const ConvergedReference filtered_reference{
       filtered,
-      "exact arithmetic costs 33 ms (valley) to 0.3 s (collapse) a step; filtered predicates "
+      "exact constructions cost 30 ms (valley) to 0.18 s (collapse) a step; filtered predicates "
       "decide as the exact ones"};
   // Their dt is within a factor 2 of the stability limit at kn x 1 (1.7e-4 s on the collapse).
   const Sweep large_full{{1.0, 0.5, 0.25}, {1.0, 10.0}, {float_, filtered}};

@@ -13,7 +13,7 @@
 //   4.2, 5.1, 5.2, 5.3, 6.2  a converged run of the scene: dt a quarter of the sweep's finest,
 //                            kn at its largest factor, exact demarcation, exact policy (§6.2:
 //                            filtered, whose predicates decide as the exact ones; the exact
-//                            arithmetic costs 33 ms-0.3 s a step on hundreds of blocks). The
+//                            constructions cost 30 ms-0.18 s a step on hundreds of blocks). The
 //                            error is the largest departure of any moving block's centroid x, y
 //                            or rotation x sqrt(A) from the reference's at 101 equally spaced
 //                            instants (linearly interpolated between steps), relative to the
@@ -30,9 +30,9 @@
 //   reference  the converged run of a scene without a closed form (its first row);
 //   refused    dt is above the engine's critical estimate 2 / omega_max (the stability limit);
 //   stopped    the engine's stability monitor stopped it midway;
-//   skipped    an exact-policy run longer than the scene's step limit for that policy (GMP
-//              arithmetic costs ~1.5 ms per step for one block on an incline, a thousand times
-//              the filtered policy; the limit keeps the full report within minutes).
+//   skipped    an exact-policy run longer than the scene's step limit for that policy (exact
+//              constructions cost 0.6-1.4 ms per step for one block on an incline, hundreds of
+//              times the filtered policy; the limit keeps the full report within minutes).
 //
 // DIR receives:
 //   runs.csv         one row per run, header exactly
