@@ -16,6 +16,7 @@ const char* name_of(PredicateKind kind) {
     case PredicateKind::cross: return "cross_sign";
     case PredicateKind::crossing_side: return "crossing_side";
     case PredicateKind::crossing_point: return "crossing_point";
+    case PredicateKind::triple: return "triple_sign";
     case PredicateKind::count: break;
   }
   return "?";

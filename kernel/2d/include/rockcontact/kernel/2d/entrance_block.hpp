@@ -20,25 +20,14 @@
 // Departure from the paper: Table 1 prunes invalid vertex-edge entrance candidates; the
 // angle merge never generates them, which is the same result in linear time.
 
-#include <string_view>
 #include <vector>
 
 #include "rockcontact/kernel/2d/convex_polygon.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/core/overlap.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
 
 namespace rockcontact::kernel {
-
-enum class Overlap { separate, touch, overlap };
-
-constexpr std::string_view to_string(Overlap o) {
-  switch (o) {
-    case Overlap::separate: return "separate";
-    case Overlap::touch: return "touch";
-    case Overlap::overlap: return "overlap";
-  }
-  return "?";
-}
 
 // The verdict alone: no construction, no allocation, exact under Filtered and Exact.
 template <NumberPolicy Policy>

@@ -19,6 +19,7 @@ enum class PredicateKind : std::uint8_t {
   crossing_side,  // side of a line-line crossing point    degree 4
   crossing_point, // a crossing's coordinates (crossing_point.hpp): a construction filtered like
                   // a predicate, whose fallback constructs exactly
+  triple,         // sign of ((p1 - p0) x (q1 - q0)) . (r1 - r0), 3D   degree 3
   count
 };
 inline constexpr std::size_t predicate_kind_count = static_cast<std::size_t>(PredicateKind::count);
