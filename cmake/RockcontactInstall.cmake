@@ -11,13 +11,15 @@ target_link_libraries(rockcontact_umbrella INTERFACE rockcontact_dynamics)
 
 set_target_properties(rockcontact_kernel_core PROPERTIES EXPORT_NAME kernel_core)
 set_target_properties(rockcontact_kernel2d PROPERTIES EXPORT_NAME kernel2d)
+set_target_properties(rockcontact_kernel3d PROPERTIES EXPORT_NAME kernel3d)
 set_target_properties(rockcontact_kernel PROPERTIES EXPORT_NAME kernel)
 set_target_properties(rockcontact_contact PROPERTIES EXPORT_NAME contact)
 set_target_properties(rockcontact_dynamics PROPERTIES EXPORT_NAME dynamics)
 set_target_properties(rockcontact_umbrella PROPERTIES EXPORT_NAME rockcontact)
 set_target_properties(rockcontact_generators PROPERTIES EXPORT_NAME generators)
 
-install(TARGETS rockcontact_kernel_core rockcontact_kernel2d rockcontact_kernel rockcontact_contact
+install(TARGETS rockcontact_kernel_core rockcontact_kernel2d rockcontact_kernel3d rockcontact_kernel
+  rockcontact_contact
   rockcontact_dynamics rockcontact_umbrella rockcontact_generators
   EXPORT rockcontactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
@@ -33,6 +35,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes/
 install(DIRECTORY
     ${PROJECT_SOURCE_DIR}/kernel/core/include/
     ${PROJECT_SOURCE_DIR}/kernel/2d/include/
+    ${PROJECT_SOURCE_DIR}/kernel/3d/include/
     ${PROJECT_SOURCE_DIR}/contact/friction/include/
     ${PROJECT_SOURCE_DIR}/contact/potential2d/include/
     ${PROJECT_SOURCE_DIR}/contact/embed/include/
