@@ -94,15 +94,11 @@ PairResult evaluate_pair(kernel::PolicyKind policy, const ConvexPolygon& cp, con
   return result;
 }
 
-template void evaluate_pair<kernel::Float>(const ConvexPolygon&, const ConvexPolygon&,
-                                           const PotentialContactParams&, PairWorkspace&, PairResult&);
-template void evaluate_pair<kernel::Filtered>(const ConvexPolygon&, const ConvexPolygon&,
-                                              const PotentialContactParams&, PairWorkspace&,
-                                              PairResult&);
-template void evaluate_pair<kernel::Exact>(const ConvexPolygon&, const ConvexPolygon&,
-                                           const PotentialContactParams&, PairWorkspace&, PairResult&);
-template void evaluate_pair<kernel::Checked>(const ConvexPolygon&, const ConvexPolygon&,
-                                             const PotentialContactParams&, PairWorkspace&,
-                                             PairResult&);
+#define ROCKCONTACT_INSTANTIATE(P)                                                       \
+  template void evaluate_pair<kernel::P>(const ConvexPolygon&, const ConvexPolygon&,     \
+                                         const PotentialContactParams&, PairWorkspace&, \
+                                         PairResult&);
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
+#undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::contact

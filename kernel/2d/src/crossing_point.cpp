@@ -87,10 +87,7 @@ Point2 construct_crossing_point(const Point2& p, const Point2& q, const Point2& 
 #define ROCKCONTACT_INSTANTIATE(P)                                                         \
   template Point2 construct_crossing_point<P>(const Point2&, const Point2&, const Point2&, \
                                               const Point2&, const Point2&);
-ROCKCONTACT_INSTANTIATE(Float)
-ROCKCONTACT_INSTANTIATE(Filtered)
-ROCKCONTACT_INSTANTIATE(Exact)
-ROCKCONTACT_INSTANTIATE(Checked)
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

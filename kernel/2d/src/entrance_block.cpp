@@ -177,10 +177,7 @@ double compute_penetration_depth(const ConvexPolygon& a, const ConvexPolygon& b)
   template Overlap classify_overlap<P>(const ConvexPolygon&, const ConvexPolygon&); \
   template EntranceBlock compute_entrance_block<P>(const ConvexPolygon&, const ConvexPolygon&); \
   template double compute_penetration_depth<P>(const ConvexPolygon&, const ConvexPolygon&);
-ROCKCONTACT_INSTANTIATE(Float)
-ROCKCONTACT_INSTANTIATE(Filtered)
-ROCKCONTACT_INSTANTIATE(Exact)
-ROCKCONTACT_INSTANTIATE(Checked)
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -244,10 +244,7 @@ void construct_points(const ConvexPolygon& cp, const ConvexPolygon& tp,
                                                                const ConvexPolygon&);       \
   template void construct_points<P>(const ConvexPolygon&, const ConvexPolygon&,             \
                                     const IntersectionPolygon&, std::vector<Point2>&);
-ROCKCONTACT_INSTANTIATE(Float)
-ROCKCONTACT_INSTANTIATE(Filtered)
-ROCKCONTACT_INSTANTIATE(Exact)
-ROCKCONTACT_INSTANTIATE(Checked)
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -218,10 +218,7 @@ PotentialResultant integrate_potential(const ConvexPolygon& cp, const ConvexPoly
   template PotentialResultant integrate_potential<P>(                                        \
       const ConvexPolygon&, const ConvexPolygon&, const IntersectionPolygon&,                \
       const PotentialParams&, PotentialWorkspace&, std::vector<Point2>&);
-ROCKCONTACT_INSTANTIATE(Float)
-ROCKCONTACT_INSTANTIATE(Filtered)
-ROCKCONTACT_INSTANTIATE(Exact)
-ROCKCONTACT_INSTANTIATE(Checked)
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

@@ -78,10 +78,7 @@ Overlap classify_overlap(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
 
 #define ROCKCONTACT_INSTANTIATE(P) \
   template Overlap classify_overlap<P>(const ConvexPolyhedron&, const ConvexPolyhedron&);
-ROCKCONTACT_INSTANTIATE(Float)
-ROCKCONTACT_INSTANTIATE(Filtered)
-ROCKCONTACT_INSTANTIATE(Exact)
-ROCKCONTACT_INSTANTIATE(Checked)
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 }  // namespace rockcontact::kernel

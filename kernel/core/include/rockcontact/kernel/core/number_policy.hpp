@@ -44,10 +44,6 @@ template <class P>
 concept NumberPolicy = std::same_as<P, Float> || std::same_as<P, Filtered> || std::same_as<P, Exact> ||
                        std::same_as<P, Checked>;
 
-// Policies whose constructions are Filtered's (double, certified crossings).
-template <class P>
-inline constexpr bool constructs_in_double = P::kind != PolicyKind::exact;
-
 constexpr std::string_view to_string(PolicyKind kind) {
   switch (kind) {
     case PolicyKind::float_: return Float::name;
@@ -65,6 +61,10 @@ constexpr std::optional<PolicyKind> parse_policy(std::string_view text) {
   if (text == Checked::name) return PolicyKind::checked;
   return std::nullopt;
 }
+
+// Expands M(P) for every number policy P: the kernels' explicit instantiations list the
+// policies here, once.
+#define ROCKCONTACT_FOR_EACH_POLICY(M) M(Float) M(Filtered) M(Exact) M(Checked)
 
 // Calls f(Policy{}) with the policy named at run time; one switch for every dispatching caller.
 template <class F>
