@@ -3,13 +3,18 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <cmath>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/core/policy_disagreement.hpp"
+#include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/testing/contact3d.hpp"
+#include "rockcontact/testing/seed.hpp"
 
 // The overlap verdict of two convex polyhedra against closed forms (unit cubes moved by exact
 // offsets, so each contact's kind is known: face on face, edge on face, edge across edge,
@@ -114,4 +119,66 @@ BOOST_AUTO_TEST_CASE(contact3d_reference_statuses) {
   }
   BOOST_TEST_MESSAGE("contact3d: Float's verdict differs from the reference on " << float_wrong << " of "
                                                                                  << pairs.size() << " pairs");
+}
+
+// Properties on random tetrahedra (every face a triangle, so any four non-coplanar points make
+// a valid block): the verdict is symmetric in the pair and unchanged by an exact translation
+// (by 2^20 in each coordinate of dyadic points, where every sum is exact) and by an exact
+// rotation (90 degrees about z: (x, y, z) -> (-y, x, z)); two tetrahedra sharing a face,
+// their fourth vertices on opposite sides, touch; the same with one fourth vertex pushed
+// through the shared face overlap. Checked must agree throughout (it throws otherwise).
+namespace {
+
+ConvexPolyhedron make_tet(const std::string& name, std::vector<Point3> v) {
+  // Orient the faces outward: the face 0 2 1 must have vertex 3 below it, i.e.
+  // orient3d(v0, v1, v2, v3) > 0; otherwise swap v1 and v2.
+  if (rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]) == rk::Sign::negative) std::swap(v[1], v[2]);
+  return ConvexPolyhedron::make(name, std::move(v), {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(random_tetrahedra_properties) {
+  std::mt19937_64 rng(rockcontact::testing::seed_for("random_tetrahedra_properties", 20261127));
+  std::uniform_int_distribution<int> grid(-64, 64);
+  const auto dyadic = [&] { return Point3{grid(rng) * 0x1p-5, grid(rng) * 0x1p-5, grid(rng) * 0x1p-5}; };
+  const auto valid = [](const std::vector<Point3>& v) {
+    return rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]) != rk::Sign::zero;
+  };
+  const auto moved = [](std::vector<Point3> v, Point3 by) {
+    for (Point3& p : v) p = {p.x + by.x, p.y + by.y, p.z + by.z};
+    return v;
+  };
+  const auto rotated = [](std::vector<Point3> v) {
+    for (Point3& p : v) p = {-p.y, p.x, p.z};
+    return v;
+  };
+  std::array<int, 3> verdicts{};
+  int float_wrong = 0, checked = 0;
+  while (checked < 3000) {
+    std::vector<Point3> va{dyadic(), dyadic(), dyadic(), dyadic()}, vb{dyadic(), dyadic(), dyadic(), dyadic()};
+    if (!valid(va) || !valid(vb)) continue;
+    // Every third pair shares a face: b's first three vertices are a's, b's apex mirrored.
+    if (checked % 3 == 0) {
+      vb = {va[0], va[1], va[2], {2 * va[0].x - va[3].x, 2 * va[0].y - va[3].y, 2 * va[0].z - va[3].z}};
+    }
+    const ConvexPolyhedron a = make_tet("a", va), b = make_tet("b", vb);
+    const Overlap verdict = rk::classify_overlap<rk::Checked>(a, b);
+    ++verdicts[static_cast<std::size_t>(verdict)];
+    if (checked % 3 == 0) BOOST_TEST((verdict == Overlap::touch));
+    BOOST_TEST((rk::classify_overlap<rk::Checked>(b, a) == verdict));
+    const Point3 by{0x1p20, -0x1p20, 0x1p20};
+    BOOST_TEST((rk::classify_overlap<rk::Filtered>(make_tet("a+", moved(va, by)), make_tet("b+", moved(vb, by))) ==
+                verdict));
+    BOOST_TEST((rk::classify_overlap<rk::Filtered>(make_tet("ra", rotated(va)), make_tet("rb", rotated(vb))) ==
+                verdict));
+    float_wrong += rk::classify_overlap<rk::Float>(a, b) != verdict;
+    ++checked;
+  }
+  // The draw must reach all three verdicts, or the properties were not tested on them.
+  BOOST_TEST(verdicts[0] > 0);
+  BOOST_TEST(verdicts[1] >= 1000);
+  BOOST_TEST(verdicts[2] > 0);
+  BOOST_TEST_MESSAGE("random tetrahedra: " << verdicts[0] << " separate, " << verdicts[1] << " touch, "
+                                           << verdicts[2] << " overlap; Float wrong on " << float_wrong);
 }
