@@ -5,7 +5,8 @@
 // NumberOps<Exact_rational> gives the few operations the FT-generic constructions need beyond
 // + - * /:
 //   to_double  round to nearest, ties to even, from CGAL's tight enclosure (to_interval) and
-//              one exact comparison with the midpoint of the two candidate doubles;
+//              one exact comparison with the midpoint of the two candidate doubles (overflow
+//              included: infinity stands for 2^1024);
 //   sqrt       the only irrational operation (the potential divides by edge lengths): MPFR
 //              (CGAL::Gmpfr) at exact_sqrt_precision bits, round to nearest twice (the
 //              rational to MPFR, then the root), so the relative error is below 2^-255; the
@@ -38,8 +39,14 @@ struct NumberOps<ExactRational> {
   static ExactRational from(double x) { return ExactRational(x); }
   static double to_double(const ExactRational& x) {
     const auto [lo, hi] = CGAL::to_interval(x);
-    if (lo == hi || !std::isfinite(lo) || !std::isfinite(hi)) return CGAL::sign(x) > 0 ? hi : lo;
-    const ExactRational midpoint = (ExactRational(lo) + ExactRational(hi)) / 2;
+    if (lo == hi) return lo;
+    // Beyond the largest double the enclosure's outer bound is infinite; rounding treats it
+    // as the next power of two, 2^1024, so values below the midpoint still round to the
+    // largest double (whose odd significand loses a tie to infinity).
+    const auto value = [](double d) {
+      return std::isfinite(d) ? ExactRational(d) : ExactRational(std::ldexp(d > 0 ? 1.0 : -1.0, 1023)) * 2;
+    };
+    const ExactRational midpoint = (value(lo) + value(hi)) / 2;
     const CGAL::Comparison_result c = CGAL::compare(x, midpoint);
     if (c == CGAL::SMALLER) return lo;
     if (c == CGAL::LARGER) return hi;
