@@ -9,13 +9,27 @@
 //   * every face has at least 3 distinct, valid vertex indices, and every vertex is on a face;
 //   * the faces close a consistently oriented 2-manifold: every directed edge a -> b of a face
 //     is traversed once, and b -> a once by another face;
-//   * every face is exactly planar and strictly convex, and every vertex not on the face lies
-//     strictly below its plane (inside); so coplanar neighbouring faces must be merged into one
-//     face, and a vertex in the middle of an edge or a face is an error.
-// A violation throws InvalidPolyhedron naming the block, the face and the vertex.
+//   * every face is planar: exactly, or to within face_planarity_tolerance of the block's size
+//     (tolerances.hpp) when its vertices come from a rotation, a strain or rounding;
+//   * the facets (below) are strictly convex, and every vertex not on a facet lies strictly
+//     below its plane (inside); so coplanar neighbouring faces must be merged into one face, and
+//     a vertex in the middle of an edge or a face is an error.
+// A violation throws InvalidPolyhedron naming the block, the face (as given) and the vertex.
 //
-// Departure from the full design (issue 19): faces planar only to within rounding (rotated or
-// deformed blocks) are not yet accepted; such a face has to be given as its triangles.
+// Faces and facets. A face planar only to rounding is not one plane of the solid: the exact hull
+// of the vertices bends along one or more diagonals of it. make() splits such a face into the
+// facets of the exact hull that it covers (the outward hull of its own vertices, decided by
+// orient3d, coplanar triangles merged), so every facet is exactly planar and every query may take
+// a facet's first three vertices as its plane. faces() lists the facets; input_face(i) names the
+// face each came from; a face that is exactly planar is one facet, so for such blocks the two
+// lists are the same. edges() lists the hull's edges, the diagonals of split faces included.
+//
+// Feature ids. The contact history of the 3D DDA (seed 001 §4.2) follows a contact by the
+// features it joins: a vertex by its index, an edge by its two vertex indices, a face by its
+// index as given. These come from the input and never from geometry, so they stay the same
+// while a block moves and deforms: moved() re-validates new coordinates against the same faces
+// and keeps every id; only the split of a bent face into facets (and so a facet's index and a
+// diagonal) may change with rounding, which is why contacts name faces as given, not facets.
 
 #include <cstddef>
 #include <cstdint>
@@ -26,6 +40,7 @@
 #include <vector>
 
 #include "rockcontact/kernel/3d/point3.hpp"
+#include "rockcontact/kernel/3d/tolerances.hpp"
 
 namespace rockcontact::kernel {
 
@@ -38,7 +53,7 @@ class InvalidPolyhedron : public std::invalid_argument {
     bad_face,       // fewer than 3 vertices, an index out of range or repeated
     unused_vertex,  // on no face
     not_closed,     // a directed edge not matched by its reverse exactly once
-    not_planar,     // a face vertex off the face's plane
+    not_planar,     // a face vertex off the face's plane by more than the tolerance
     not_convex      // a face not strictly convex, or a vertex on or above another face's plane
   };
 
@@ -67,9 +82,18 @@ class ConvexPolyhedron {
   // Validates as the header states; throws InvalidPolyhedron naming `name`.
   static ConvexPolyhedron make(std::string name, std::vector<Point3> vertices, std::vector<Face> faces);
 
+  // The same block with new vertex coordinates (moved, rotated, deformed), validated against the
+  // same faces; vertex indices and faces as given keep their ids.
+  ConvexPolyhedron moved(std::vector<Point3> vertices) const;
+
   const std::string& name() const noexcept { return name_; }
   std::span<const Point3> vertices() const noexcept { return vertices_; }
-  std::span<const Face> faces() const noexcept { return faces_; }
+  // The exactly planar facets, counter-clockwise seen from outside.
+  std::span<const Face> faces() const noexcept { return facets_; }
+  // The index, in input_faces(), of the face facet `facet` lies in.
+  std::size_t input_face(std::size_t facet) const { return input_face_[facet]; }
+  // The faces as given to make().
+  std::span<const Face> input_faces() const noexcept { return input_faces_; }
   std::span<const Edge> edges() const noexcept { return edges_; }
   const Point3& operator[](std::size_t i) const { return vertices_[i]; }
   std::size_t size() const noexcept { return vertices_.size(); }
@@ -79,7 +103,9 @@ class ConvexPolyhedron {
 
   std::string name_;
   std::vector<Point3> vertices_;
-  std::vector<Face> faces_;
+  std::vector<Face> input_faces_;
+  std::vector<Face> facets_;
+  std::vector<std::size_t> input_face_;  // per facet
   std::vector<Edge> edges_;
 };
 
