@@ -4,7 +4,11 @@
 
 #include "rockcontact/kernel/3d/halfspace_polyhedron.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -54,11 +58,10 @@ namespace {
 using detail::ExactRational;
 using detail::Vector3T;
 
-// Every vertex in the frame of o: an input point's difference (rounded once in double, exact in
-// rationals), an implicit point by Cramer's rule (detail::three_plane_point) on the planes'
-// coefficients, computed once per plane.
-template <class T>
-std::vector<Vector3T<T>> frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+// Every vertex in the frame of o, exactly: an input point's difference, an implicit point by
+// Cramer's rule (detail::three_plane_point) on the planes' exact coefficients.
+std::vector<Vector3T<ExactRational>> exact_frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+  using T = ExactRational;
   std::vector<detail::PlaneCoefficients<T>> planes;
   planes.reserve(h.planes().size());
   for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<T>(plane, o));
@@ -70,7 +73,99 @@ std::vector<Vector3T<T>> frame_coordinates(const HalfspacePolyhedron& h, const P
       continue;
     }
     const auto x = detail::three_plane_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
-    out.push_back({T(x.scaled.x / x.det), T(x.scaled.y / x.det), T(x.scaled.z / x.det)});
+    out.push_back({x.scaled.x / x.det, x.scaled.y / x.det, x.scaled.z / x.det});
+  }
+  return out;
+}
+
+// A double with the magnitude of its formula: the same expression on the absolute values of
+// its input doubles with every difference turned into a sum. A formula whose every path from an
+// input to the result passes through at most k roundings (eps = 2^-52 per operation, any
+// rounding mode), none of them an underflow, is then computed within gamma_k * magnitude of
+// its exact value, gamma_k = k eps / (1 - k eps) (Higham, Accuracy and Stability, sec. 3.1).
+struct Bounded {
+  double value = 0.0;
+  double magnitude = 0.0;
+  Bounded() = default;
+  explicit Bounded(double x) : value(x), magnitude(std::fabs(x)) {}
+  Bounded(double v, double m) : value(v), magnitude(m) {}
+  friend Bounded operator+(Bounded a, Bounded b) { return {a.value + b.value, a.magnitude + b.magnitude}; }
+  friend Bounded operator-(Bounded a, Bounded b) { return {a.value - b.value, a.magnitude + b.magnitude}; }
+  friend Bounded operator*(Bounded a, Bounded b) { return {a.value * b.value, a.magnitude * b.magnitude}; }
+};
+
+// The rounding depth of Cramer's rule on planes through points (detail/plane_formulas.hpp):
+// a difference 1, a normal 3 (product, difference), an offset d 6 (product, two sums), a cross
+// product of normals 5, so det X = sum of d (n x n) has depth 9 and det = n . (n x n) depth 8
+// (planes by coefficients are shallower). Computed in double, a magnitude (sums and products of
+// non-negative numbers, depth <= 9) is at most (1 + eps)^9 below its exact value, so
+// gamma_9 (1 + eps)^9 < 10 eps bounds both errors; 12 eps leaves room.
+constexpr double cramer_error_factor = 12.0 * 0x1p-52;
+// Below this a magnitude may hide an underflowed product: the certificate is not trusted.
+constexpr double cramer_min_magnitude = 0x1p-900;
+// A double vertex is kept when certified within 2^-42 of the polyhedron's extent: a volume then
+// moves by at most about area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README
+// allows near zero and far below its 1e-9 relative tolerance.
+constexpr double vertex_tolerance = 0x1p-42;
+
+// An implicit vertex in double, or nothing when its error cannot be certified within `tolerance`:
+// with S and D the computed det X and det, and ES, ED their bounds,
+//   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
+// plus one rounding of the quotient.
+std::optional<Vector3T<double>> certified_point(const detail::PlaneCoefficients<Bounded>& p,
+                                                const detail::PlaneCoefficients<Bounded>& q,
+                                                const detail::PlaneCoefficients<Bounded>& r, double tolerance) {
+  const auto x = detail::three_plane_point(p, q, r);
+  const double ed = cramer_error_factor * x.det.magnitude;
+  const double d = std::fabs(x.det.value);
+  if (!(d > ed) || x.det.magnitude < cramer_min_magnitude) return std::nullopt;
+  Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value, x.scaled.z.value / x.det.value};
+  const auto error = [&](double xi, const Bounded& si) {
+    return (std::fabs(xi) * ed + cramer_error_factor * si.magnitude) / (d - ed) + 0x1p-52 * std::fabs(xi);
+  };
+  const double worst = std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)});
+  if (!(worst <= tolerance)) return std::nullopt;
+  return out;
+}
+
+// Every vertex in the frame of o in double: an input point's difference rounded once, an
+// implicit point certified in double, else from exact rationals rounded once per coordinate.
+std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+  std::vector<detail::PlaneCoefficients<Bounded>> planes;
+  planes.reserve(h.planes().size());
+  for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<Bounded>(plane, o));
+  std::vector<Vector3T<double>> out;
+  out.reserve(h.vertices().size());
+  double extent = 0.0;
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      const Vector3T<double> x = detail::difference3<double>(v.point, o);
+      extent = std::max({extent, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    }
+  }
+  std::vector<detail::PlaneCoefficients<ExactRational>> exact;  // filled on the first fallback
+  const auto to_double = [](const ExactRational& q) { return detail::NumberOps<ExactRational>::to_double(q); };
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      out.push_back(detail::difference3<double>(v.point, o));
+      continue;
+    }
+    const auto x = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]],
+                                   vertex_tolerance * extent);
+    if (x) {
+      out.push_back(*x);
+      continue;
+    }
+    if (exact.empty()) {
+      for (const Plane3& plane : h.planes()) exact.push_back(detail::plane_coefficients<ExactRational>(plane, o));
+    }
+    const auto e = detail::three_plane_point(exact[v.planes[0]], exact[v.planes[1]], exact[v.planes[2]]);
+    if (CGAL::is_zero(e.det)) {  // dependent planes: only after a wrong Float decision
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.push_back({nan, nan, nan});
+      continue;
+    }
+    out.push_back({to_double(e.scaled.x / e.det), to_double(e.scaled.y / e.det), to_double(e.scaled.z / e.det)});
   }
   return out;
 }
@@ -96,7 +191,7 @@ T six_volume(const HalfspacePolyhedron& h, const std::vector<Vector3T<T>>& x) {
 }
 
 ExactRational exact_volume(const HalfspacePolyhedron& h) {
-  return six_volume(h, frame_coordinates<ExactRational>(h, h.frame_origin())) / 6;
+  return six_volume(h, exact_frame_coordinates(h, h.frame_origin())) / 6;
 }
 
 }  // namespace
@@ -107,13 +202,13 @@ std::vector<Point3> HalfspacePolyhedron::vertex_coordinates() const {
   std::vector<Point3> out;
   out.reserve(vertices_.size());
   if constexpr (Policy::kind == PolicyKind::exact) {
-    const auto x = frame_coordinates<ExactRational>(*this, o);
+    const auto x = exact_frame_coordinates(*this, o);
     const auto round = [](const ExactRational& q) { return detail::NumberOps<ExactRational>::to_double(q); };
     for (const auto& p : x) {
       out.push_back({round(p.x + ExactRational(o.x)), round(p.y + ExactRational(o.y)), round(p.z + ExactRational(o.z))});
     }
   } else {
-    const auto x = frame_coordinates<double>(*this, o);
+    const auto x = frame_coordinates(*this, o);
     for (std::size_t v = 0; v < vertices_.size(); ++v) {
       out.push_back(vertices_[v].input ? vertices_[v].point : Point3{o.x + x[v].x, o.y + x[v].y, o.z + x[v].z});
     }
@@ -127,7 +222,7 @@ double HalfspacePolyhedron::volume() const {
   if constexpr (Policy::kind == PolicyKind::exact) {
     return detail::NumberOps<ExactRational>::to_double(exact_volume(*this));
   } else {
-    return six_volume(*this, frame_coordinates<double>(*this, frame_origin())) / 6.0;
+    return six_volume(*this, frame_coordinates(*this, frame_origin())) / 6.0;
   }
 }
 

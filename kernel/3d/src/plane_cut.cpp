@@ -57,10 +57,14 @@ class ClipBuilder {
   }
 
   bool on_plane(std::uint32_t id) const { return on_plane_[id]; }
+  // A new vertex's second plane is set by the second face of its edge. Under the exact
+  // policies both faces of a cut edge are kept; a polyhedron left open by an earlier Float clip
+  // may lack one, and the vertex then repeats its first plane (its coordinates come out
+  // non-finite, a wrong Float result rather than an invalid index).
   std::vector<HalfspacePolyhedron::Vertex> take_vertices() {
-#ifndef NDEBUG
-    for (const auto& v : vertices_) assert(v.input || v.planes[1] != none);
-#endif
+    for (auto& v : vertices_) {
+      if (!v.input && v.planes[1] == none) v.planes[1] = v.planes[0];
+    }
     return std::move(vertices_);
   }
   std::size_t size() const { return vertices_.size(); }

@@ -19,10 +19,11 @@
 //   vertex_coordinates<P>()  Float, Filtered, Checked: an input vertex as given; an implicit
 //                            one by Cramer's rule in double, in a frame at the polyhedron's
 //                            first input vertex (so the coefficients stay small for a pair far
-//                            from the origin); its error is of the order of eps times the
-//                            condition number of the three planes' normal matrix, times the
-//                            polyhedron's extent. Exact: Cramer's rule in exact rationals,
-//                            each coordinate rounded once.
+//                            from the origin), with a running error bound; a vertex not
+//                            certified within 2^-42 of the polyhedron's extent (three nearly
+//                            dependent planes: faces of two blocks parallel to within rounding)
+//                            is computed in exact rationals and rounded instead. Exact: Cramer's
+//                            rule in exact rationals, each coordinate rounded once.
 //   volume<P>()              divergence theorem: the sum over faces of the fan triangles'
 //                            signed tetrahedron volumes (1/6 det) about the first vertex, in
 //                            the same local frame; Exact: the exact rational volume rounded
