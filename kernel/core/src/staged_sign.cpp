@@ -17,6 +17,7 @@ const char* name_of(PredicateKind kind) {
     case PredicateKind::crossing_side: return "crossing_side";
     case PredicateKind::crossing_point: return "crossing_point";
     case PredicateKind::triple: return "triple_sign";
+    case PredicateKind::plane_side: return "plane_side";
     case PredicateKind::count: break;
   }
   return "?";

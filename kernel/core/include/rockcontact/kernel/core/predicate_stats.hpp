@@ -20,6 +20,9 @@ enum class PredicateKind : std::uint8_t {
   crossing_point, // a crossing's coordinates (crossing_point.hpp): a construction filtered like
                   // a predicate, whose fallback constructs exactly
   triple,         // sign of ((p1 - p0) x (q1 - q0)) . (r1 - r0), 3D   degree 3
+  plane_side,     // side of a plane at the meeting point of three planes, or of a plane given by
+                  // coefficients at an input point (3D, plane.hpp); appended last so that
+                  // checkpoints written before it read its count as zero
   count
 };
 inline constexpr std::size_t predicate_kind_count = static_cast<std::size_t>(PredicateKind::count);

@@ -1,0 +1,245 @@
+// HalfspacePolyhedron (halfspace_polyhedron.hpp): the constructions, generic over the number
+// type (double, or CGAL::Exact_rational under Exact) on the plane formulas of
+// detail/plane_formulas.hpp.
+
+#include "rockcontact/kernel/3d/halfspace_polyhedron.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "rockcontact/kernel/3d/detail/halfspace_exact.hpp"
+#include "rockcontact/kernel/3d/detail/plane_formulas.hpp"
+#include "rockcontact/kernel/core/detail/exact_number.hpp"
+
+namespace rockcontact::kernel {
+
+HalfspacePolyhedron::HalfspacePolyhedron(const ConvexPolyhedron& p) {
+  planes_.reserve(p.faces().size());
+  faces_.reserve(p.faces().size());
+  for (std::size_t f = 0; f < p.faces().size(); ++f) {
+    planes_.push_back(Plane3::of_face(p, f));
+    faces_.push_back({static_cast<std::uint32_t>(f), p.faces()[f]});
+  }
+  vertices_.reserve(p.size());
+  for (const Point3& x : p.vertices()) vertices_.push_back({true, x, {}});
+}
+
+HalfspacePolyhedron::HalfspacePolyhedron(std::vector<Plane3> planes, std::vector<Face> faces,
+                                         std::vector<Vertex> vertices)
+    : planes_(std::move(planes)), faces_(std::move(faces)), vertices_(std::move(vertices)) {
+#ifndef NDEBUG
+  for (const Face& face : faces_) {
+    assert(face.plane < planes_.size() && face.loop.size() >= 3);
+    for (std::uint32_t v : face.loop) assert(v < vertices_.size());
+  }
+  for (const Vertex& v : vertices_) {
+    if (!v.input) {
+      for (std::uint32_t i : v.planes) assert(i < planes_.size());
+    }
+  }
+#endif
+}
+
+Point3 HalfspacePolyhedron::frame_origin() const {
+  for (const Vertex& v : vertices_) {
+    if (v.input) return v.point;
+  }
+  return planes_.empty() ? Point3{} : planes_.front().reference();
+}
+
+namespace {
+
+using detail::ExactRational;
+using detail::Vector3T;
+
+// Every vertex in the frame of o, exactly: an input point's difference, an implicit point by
+// Cramer's rule (detail::three_plane_point) on the planes' exact coefficients.
+std::vector<Vector3T<ExactRational>> exact_frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+  using T = ExactRational;
+  std::vector<detail::PlaneCoefficients<T>> planes;
+  planes.reserve(h.planes().size());
+  for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<T>(plane, o));
+  std::vector<Vector3T<T>> out;
+  out.reserve(h.vertices().size());
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      out.push_back(detail::difference3<T>(v.point, o));
+      continue;
+    }
+    const auto x = detail::three_plane_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
+    out.push_back({x.scaled.x / x.det, x.scaled.y / x.det, x.scaled.z / x.det});
+  }
+  return out;
+}
+
+// A double with the magnitude of its formula: the same expression on the absolute values of
+// its input doubles with every difference turned into a sum. A formula whose every path from an
+// input to the result passes through at most k roundings (eps = 2^-52 per operation, any
+// rounding mode), none of them an underflow, is then computed within gamma_k * magnitude of
+// its exact value, gamma_k = k eps / (1 - k eps) (Higham, Accuracy and Stability, sec. 3.1).
+struct Bounded {
+  double value = 0.0;
+  double magnitude = 0.0;
+  Bounded() = default;
+  explicit Bounded(double x) : value(x), magnitude(std::fabs(x)) {}
+  Bounded(double v, double m) : value(v), magnitude(m) {}
+  friend Bounded operator+(Bounded a, Bounded b) { return {a.value + b.value, a.magnitude + b.magnitude}; }
+  friend Bounded operator-(Bounded a, Bounded b) { return {a.value - b.value, a.magnitude + b.magnitude}; }
+  friend Bounded operator*(Bounded a, Bounded b) { return {a.value * b.value, a.magnitude * b.magnitude}; }
+};
+
+// The rounding depth of Cramer's rule on planes through points (detail/plane_formulas.hpp):
+// a difference 1, a normal 3 (product, difference), an offset d 6 (product, two sums), a cross
+// product of normals 5, so det X = sum of d (n x n) has depth 9 and det = n . (n x n) depth 8
+// (planes by coefficients are shallower). Computed in double, a magnitude (sums and products of
+// non-negative numbers, depth <= 9) is at most (1 + eps)^9 below its exact value, so
+// gamma_9 (1 + eps)^9 < 10 eps bounds both errors; 12 eps leaves room.
+constexpr double cramer_error_factor = 12.0 * 0x1p-52;
+// Below this a magnitude may hide an underflowed product: the certificate is not trusted.
+constexpr double cramer_min_magnitude = 0x1p-900;
+// A double vertex is kept when certified within 2^-42 of the polyhedron's extent: a volume then
+// moves by at most about area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README
+// allows near zero and far below its 1e-9 relative tolerance.
+constexpr double vertex_tolerance = 0x1p-42;
+
+// An implicit vertex in double, or nothing when its error cannot be certified within `tolerance`:
+// with S and D the computed det X and det, and ES, ED their bounds,
+//   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
+// plus one rounding of the quotient.
+std::optional<Vector3T<double>> certified_point(const detail::PlaneCoefficients<Bounded>& p,
+                                                const detail::PlaneCoefficients<Bounded>& q,
+                                                const detail::PlaneCoefficients<Bounded>& r, double tolerance) {
+  const auto x = detail::three_plane_point(p, q, r);
+  const double ed = cramer_error_factor * x.det.magnitude;
+  const double d = std::fabs(x.det.value);
+  if (!(d > ed) || x.det.magnitude < cramer_min_magnitude) return std::nullopt;
+  Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value, x.scaled.z.value / x.det.value};
+  const auto error = [&](double xi, const Bounded& si) {
+    return (std::fabs(xi) * ed + cramer_error_factor * si.magnitude) / (d - ed) + 0x1p-52 * std::fabs(xi);
+  };
+  const double worst = std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)});
+  if (!(worst <= tolerance)) return std::nullopt;
+  return out;
+}
+
+// Every vertex in the frame of o in double: an input point's difference rounded once, an
+// implicit point certified in double, else from exact rationals rounded once per coordinate.
+std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+  std::vector<detail::PlaneCoefficients<Bounded>> planes;
+  planes.reserve(h.planes().size());
+  for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<Bounded>(plane, o));
+  std::vector<Vector3T<double>> out;
+  out.reserve(h.vertices().size());
+  double extent = 0.0;
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      const Vector3T<double> x = detail::difference3<double>(v.point, o);
+      extent = std::max({extent, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    }
+  }
+  std::vector<detail::PlaneCoefficients<ExactRational>> exact;  // filled on the first fallback
+  const auto to_double = [](const ExactRational& q) { return detail::NumberOps<ExactRational>::to_double(q); };
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      out.push_back(detail::difference3<double>(v.point, o));
+      continue;
+    }
+    const auto x = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]],
+                                   vertex_tolerance * extent);
+    if (x) {
+      out.push_back(*x);
+      continue;
+    }
+    if (exact.empty()) {
+      for (const Plane3& plane : h.planes()) exact.push_back(detail::plane_coefficients<ExactRational>(plane, o));
+    }
+    const auto e = detail::three_plane_point(exact[v.planes[0]], exact[v.planes[1]], exact[v.planes[2]]);
+    if (CGAL::is_zero(e.det)) {  // dependent planes: only after a wrong Float decision
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.push_back({nan, nan, nan});
+      continue;
+    }
+    out.push_back({to_double(e.scaled.x / e.det), to_double(e.scaled.y / e.det), to_double(e.scaled.z / e.det)});
+  }
+  return out;
+}
+
+// Six times the volume: the divergence theorem with the faces fanned into triangles
+// (x0, x_i, x_{i+1}), each counter-clockwise from outside, against the apex c = the first
+// vertex: sum of det(x0 - c, x_i - c, x_{i+1} - c).
+template <class T>
+T six_volume(const HalfspacePolyhedron& h, const std::vector<Vector3T<T>>& x) {
+  T sum(0);
+  if (x.empty()) return sum;
+  const Vector3T<T>& c = x.front();
+  const auto from_c = [&](std::uint32_t v) {
+    return Vector3T<T>{T(x[v].x - c.x), T(x[v].y - c.y), T(x[v].z - c.z)};
+  };
+  for (const HalfspacePolyhedron::Face& face : h.faces()) {
+    const Vector3T<T> a = from_c(face.loop[0]);
+    for (std::size_t i = 1; i + 1 < face.loop.size(); ++i) {
+      sum = sum + detail::dot(a, detail::cross(from_c(face.loop[i]), from_c(face.loop[i + 1])));
+    }
+  }
+  return sum;
+}
+
+ExactRational exact_volume(const HalfspacePolyhedron& h) {
+  return six_volume(h, exact_frame_coordinates(h, h.frame_origin())) / 6;
+}
+
+}  // namespace
+
+template <NumberPolicy Policy>
+std::vector<Point3> HalfspacePolyhedron::vertex_coordinates() const {
+  const Point3 o = frame_origin();
+  std::vector<Point3> out;
+  out.reserve(vertices_.size());
+  if constexpr (Policy::kind == PolicyKind::exact) {
+    const auto x = exact_frame_coordinates(*this, o);
+    const auto round = [](const ExactRational& q) { return detail::NumberOps<ExactRational>::to_double(q); };
+    for (const auto& p : x) {
+      out.push_back({round(p.x + ExactRational(o.x)), round(p.y + ExactRational(o.y)), round(p.z + ExactRational(o.z))});
+    }
+  } else {
+    const auto x = frame_coordinates(*this, o);
+    for (std::size_t v = 0; v < vertices_.size(); ++v) {
+      out.push_back(vertices_[v].input ? vertices_[v].point : Point3{o.x + x[v].x, o.y + x[v].y, o.z + x[v].z});
+    }
+  }
+  return out;
+}
+
+template <NumberPolicy Policy>
+double HalfspacePolyhedron::volume() const {
+  if (empty()) return 0.0;
+  if constexpr (Policy::kind == PolicyKind::exact) {
+    return detail::NumberOps<ExactRational>::to_double(exact_volume(*this));
+  } else {
+    return six_volume(*this, frame_coordinates(*this, frame_origin())) / 6.0;
+  }
+}
+
+#define ROCKCONTACT_INSTANTIATE(P)                                                 \
+  template std::vector<Point3> HalfspacePolyhedron::vertex_coordinates<P>() const; \
+  template double HalfspacePolyhedron::volume<P>() const;
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
+#undef ROCKCONTACT_INSTANTIATE
+
+namespace detail {
+
+std::string exact_volume_string(const HalfspacePolyhedron& p) {
+  if (p.empty()) return "0";
+  ExactRational v = exact_volume(p);
+  v.canonicalize();
+  return v.get_str();
+}
+
+}  // namespace detail
+}  // namespace rockcontact::kernel

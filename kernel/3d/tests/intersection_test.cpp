@@ -1,0 +1,176 @@
+#define BOOST_TEST_MODULE kernel3d_intersection
+#include "rockcontact/kernel/3d/intersection.hpp"
+
+#include <boost/test/unit_test.hpp>
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "polyhedron_checks.hpp"
+#include "rockcontact/kernel/3d/detail/halfspace_exact.hpp"
+#include "rockcontact/kernel/3d/predicates.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/testing/contact3d.hpp"
+#include "rockcontact/testing/seed.hpp"
+
+// The intersection polyhedron of two convex polyhedra and its volume, against the independent
+// contact3d reference (exact volumes of 132 adversarial pairs), closed forms, and exact
+// properties (symmetry, the bound by either volume) on random polyhedra.
+
+namespace rk = rockcontact::kernel;
+using rk::ConvexPolyhedron;
+using rk::HalfspacePolyhedron;
+using rk::Point3;
+
+namespace {
+
+ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
+  return ConvexPolyhedron::make(
+      name,
+      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
+      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+}
+
+mpq_class exact_volume(const HalfspacePolyhedron& h) { return mpq_class(rk::detail::exact_volume_string(h)); }
+
+// The contact3d README's tolerance: 1e-9 relative, 1e-12 scale^3 absolute near zero (the
+// reference is exact; a double volume in a local frame carries a few ulps of the largest
+// fan-triangle terms, far below both).
+bool volume_matches(double got, double expected, double scale) {
+  return std::fabs(got - expected) <= std::max(1e-9 * std::fabs(expected), 1e-12 * scale * scale * scale);
+}
+
+template <class Policy>
+int contact3d_volume_misses(bool assert_each) {
+  int misses = 0;
+  for (const auto& pair : rockcontact::testing::contact3d_pairs()) {
+    // The reference gives decimal strings (50 digits); std::stod rounds them to nearest.
+    const double expected = std::stod(pair.expected.at("volume").get<std::string>());
+    const double scale = std::stod(pair.expected.at("scale").get<std::string>());
+    const HalfspacePolyhedron h = rk::intersection<Policy>(pair.cp, pair.tp);
+    const double got = h.template volume<Policy>();
+    const bool ok = volume_matches(got, expected, scale);
+    misses += !ok;
+    if (assert_each) {
+      BOOST_TEST_INFO(pair.id << " under " << Policy::name << ": volume " << got << ", expected " << expected);
+      BOOST_TEST(ok);
+      // Empty exactly when the interiors do not overlap.
+      BOOST_TEST(h.empty() == (pair.expected.at("status").get<std::string>() != "overlap"));
+    }
+  }
+  return misses;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(contact3d_volumes) {
+  contact3d_volume_misses<rk::Filtered>(true);
+  contact3d_volume_misses<rk::Exact>(true);
+  contact3d_volume_misses<rk::Checked>(true);
+  const int float_misses = contact3d_volume_misses<rk::Float>(false);
+  BOOST_TEST_MESSAGE("contact3d: Float's volume misses the reference on " << float_misses << " of "
+                                                                         << rockcontact::testing::contact3d_pairs().size()
+                                                                         << " pairs");
+}
+
+// Under Exact the intersection is valid and its exact volume equals the reference's exact
+// rational `volume_exact`, and is the same with the pair exchanged.
+BOOST_AUTO_TEST_CASE(contact3d_exact_volumes) {
+  for (const auto& pair : rockcontact::testing::contact3d_pairs()) {
+    BOOST_TEST_INFO(pair.id);
+    const HalfspacePolyhedron ab = rk::intersection<rk::Exact>(pair.cp, pair.tp);
+    const HalfspacePolyhedron ba = rk::intersection<rk::Exact>(pair.tp, pair.cp);
+    rockcontact::testing::check_valid(ab);
+    const mpq_class v = exact_volume(ab);
+    BOOST_TEST(v == exact_volume(ba));
+    if (pair.expected.contains("volume_exact")) {
+      BOOST_TEST(v == mpq_class(pair.expected.at("volume_exact").get<std::string>()));
+    }
+  }
+}
+
+// The unit cube against the unit cube moved by (0.5, 0.25, 0.125): a box 0.5 x 0.75 x 0.875.
+BOOST_AUTO_TEST_CASE(shifted_cubes_in_closed_form) {
+  const ConvexPolyhedron a = box("a", {0, 0, 0}, {1, 1, 1});
+  const ConvexPolyhedron b = box("b", {0.5, 0.25, 0.125}, {1.5, 1.25, 1.125});
+  const double expected = 0.5 * 0.75 * 0.875;  // exact in double
+  BOOST_TEST(exact_volume(rk::intersection<rk::Exact>(a, b)) == mpq_class(21, 64));
+  BOOST_TEST(rk::intersection_volume<rk::Exact>(a, b) == expected);
+  // Filtered and Checked: every coordinate is dyadic and every fan term exact in double.
+  BOOST_TEST(rk::intersection_volume<rk::Filtered>(a, b) == expected);
+  BOOST_TEST(rk::intersection_volume<rk::Checked>(b, a) == expected);
+  // Far from the origin by 2^20 (every coordinate exact), the same volume: the local frame.
+  const Point3 o{0x1p20, -0x1p20, 0x1p20};
+  const ConvexPolyhedron fa = box("fa", o, {o.x + 1, o.y + 1, o.z + 1});
+  const ConvexPolyhedron fb = box("fb", {o.x + 0.5, o.y + 0.25, o.z + 0.125}, {o.x + 1.5, o.y + 1.25, o.z + 1.125});
+  BOOST_TEST(rk::intersection_volume<rk::Filtered>(fa, fb) == expected);
+  BOOST_TEST(rk::intersection_volume<rk::Exact>(fa, fb) == expected);
+  // Touching face on face, edge on edge, vertex on vertex: no interior in common.
+  for (const Point3 at : {Point3{1, 0, 0}, Point3{1, 1, 0.5}, Point3{1, 1, 1}, Point3{0.3, 0.6, 1}}) {
+    const ConvexPolyhedron t = box("touch", at, {at.x + 1, at.y + 1, at.z + 1});
+    BOOST_TEST(rk::intersection<rk::Checked>(a, t).empty());
+    BOOST_TEST(rk::intersection<rk::Checked>(t, a).empty());
+    BOOST_TEST(rk::intersection_volume<rk::Exact>(a, t) == 0.0);
+  }
+  // The same cube: the intersection is the cube itself.
+  BOOST_TEST(exact_volume(rk::intersection<rk::Checked>(a, box("same", {0, 0, 0}, {1, 1, 1}))) == 1);
+}
+
+// Random tetrahedra and octahedra (unequal half-axes, so faces are general triangles) on a
+// dyadic grid: V(a, b) = V(b, a) exactly (Exact's rationals) and V(a, b) <= min(V(a), V(b))
+// exactly; Filtered's volume within 1e-12 (relative to the unit scale, a few ulps of the fan
+// terms) of Exact's; Checked throws on any sign disagreement.
+namespace {
+
+ConvexPolyhedron make_tet(const std::string& name, std::vector<Point3> v) {
+  if (rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]) == rk::Sign::negative) std::swap(v[1], v[2]);
+  return ConvexPolyhedron::make(name, std::move(v), {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+}
+
+ConvexPolyhedron make_octahedron(const std::string& name, Point3 c, const std::array<double, 6>& r) {
+  return ConvexPolyhedron::make(
+      name,
+      {{c.x + r[0], c.y, c.z}, {c.x - r[1], c.y, c.z}, {c.x, c.y + r[2], c.z}, {c.x, c.y - r[3], c.z},
+       {c.x, c.y, c.z + r[4]}, {c.x, c.y, c.z - r[5]}},
+      {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(random_pairs_symmetric_and_bounded) {
+  std::mt19937_64 rng(rockcontact::testing::seed_for("random_pairs_symmetric_and_bounded", 20261125));
+  std::uniform_int_distribution<int> grid(-64, 64), radius(4, 64);
+  const auto dyadic = [&] { return Point3{grid(rng) * 0x1p-5, grid(rng) * 0x1p-5, grid(rng) * 0x1p-5}; };
+  const auto random_polyhedron = [&](const std::string& name) {
+    if (rng() % 2 == 0) {
+      std::array<double, 6> r;
+      for (double& x : r) x = radius(rng) * 0x1p-5;
+      return make_octahedron(name, dyadic(), r);
+    }
+    for (;;) {
+      std::vector<Point3> v{dyadic(), dyadic(), dyadic(), dyadic()};
+      if (rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]) != rk::Sign::zero) return make_tet(name, v);
+    }
+  };
+  int overlapping = 0;
+  for (int i = 0; i < 400; ++i) {
+    const ConvexPolyhedron a = random_polyhedron("a"), b = random_polyhedron("b");
+    const HalfspacePolyhedron ab = rk::intersection<rk::Checked>(a, b);
+    const mpq_class v = exact_volume(rk::intersection<rk::Exact>(a, b));
+    BOOST_TEST(v == exact_volume(rk::intersection<rk::Exact>(b, a)));
+    BOOST_TEST(v <= exact_volume(HalfspacePolyhedron(a)));
+    BOOST_TEST(v <= exact_volume(HalfspacePolyhedron(b)));
+    BOOST_TEST(std::fabs(ab.volume<rk::Checked>() - v.get_d()) <= 1e-12);
+    if (i < 100) rockcontact::testing::check_valid(ab);
+    overlapping += v > 0;
+  }
+  BOOST_TEST(overlapping >= 50);  // the draw must exercise non-empty intersections
+  BOOST_TEST_MESSAGE("random pairs: " << overlapping << " of 400 overlap");
+}
