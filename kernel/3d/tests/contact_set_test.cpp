@@ -1,0 +1,134 @@
+#define BOOST_TEST_MODULE kernel3d_contact_set
+#include "rockcontact/kernel/3d/contact_set.hpp"
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "polyhedra.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/testing/contact3d.hpp"
+
+// The contact set of touching convex polyhedra against closed forms (a square, a rectangle, an
+// octagon cut out by crossings, segments, points, one of each kind of touch) and the contact3d
+// reference (exact dimension and corners of 55 touching pairs).
+
+namespace rk = rockcontact::kernel;
+namespace rt = rockcontact::testing;
+using rk::ConvexPolyhedron;
+using rk::Point3;
+
+namespace {
+
+// Same dimension, as many corners, and each corner within `tolerance` of one in the other list.
+bool same_set(const rk::ContactSet& set, int dimension, const std::vector<Point3>& corners, double tolerance) {
+  const auto covered = [&](const std::vector<Point3>& from, const std::vector<Point3>& to) {
+    return std::all_of(from.begin(), from.end(), [&](const Point3& p) {
+      return std::any_of(to.begin(), to.end(), [&](const Point3& q) { return rt::distance(p, q) <= tolerance; });
+    });
+  };
+  return set.dimension == dimension && set.vertices.size() == corners.size() && covered(set.vertices, corners) &&
+         covered(corners, set.vertices);
+}
+
+template <class Policy>
+void check_closed_form(const ConvexPolyhedron& a, const ConvexPolyhedron& b, int dimension,
+                       const std::vector<Point3>& corners) {
+  // Input corners are exact; crossings here are dyadic and constructed within a few ulps.
+  const double tolerance = 0x1p-50 * (1 + std::fabs(corners[0].x));
+  BOOST_TEST_CONTEXT(a.name() << " / " << b.name() << " under " << Policy::name) {
+    const auto ab = rk::contact_set<Policy>(a, b);
+    const auto ba = rk::contact_set<Policy>(b, a);
+    BOOST_TEST_REQUIRE(ab.has_value());
+    BOOST_TEST_REQUIRE(ba.has_value());
+    BOOST_TEST(same_set(*ab, dimension, corners, tolerance));
+    BOOST_TEST(same_set(*ba, dimension, corners, tolerance));
+  }
+}
+
+void check_staged(const ConvexPolyhedron& a, const ConvexPolyhedron& b, int dimension,
+                  const std::vector<Point3>& corners) {
+  check_closed_form<rk::Filtered>(a, b, dimension, corners);
+  check_closed_form<rk::Exact>(a, b, dimension, corners);
+  check_closed_form<rk::Checked>(a, b, dimension, corners);
+}
+
+// The square |x - cx| + |y - cy| <= r, counter-clockwise.
+std::vector<std::pair<double, double>> diamond(double cx, double cy, double r) {
+  return {{cx + r, cy}, {cx, cy + r}, {cx - r, cy}, {cx, cy - r}};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(closed_forms) {
+  const ConvexPolyhedron a = rt::unit_cube_at("a", {0, 0, 0});
+  check_staged(a, rt::unit_cube_at("face on face", {1, 0, 0}), 2, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}});
+  check_staged(a, rt::unit_cube_at("face on face, shifted", {1, 0.5, 0.25}), 2,
+               {{1, 0.5, 0.25}, {1, 1, 0.25}, {1, 1, 1}, {1, 0.5, 1}});
+  check_staged(a, rt::unit_cube_at("edge on edge", {1, 1, 0.5}), 1, {{1, 1, 0.5}, {1, 1, 1}});
+  check_staged(a, rt::unit_cube_at("vertex on vertex", {1, 1, 1}), 0, {{1, 1, 1}});
+  check_staged(a, rt::octahedron("vertex on face", {0.5, 0.5, 1.5}, 0.5), 0, {{0.5, 0.5, 1}});
+  check_staged(a, rt::octahedron("vertex on edge", {0.5, 1.5, 1}, 0.5), 0, {{0.5, 1, 1}});
+  check_staged(a, rt::crossing_tetrahedron("edge across edge", 0), 0, {{0.5, 1, 1}});
+  // A diamond prism standing on the top face, |x - 0.5| + |y - 0.5| <= 0.625: the octagon of
+  // eight crossings, 0.125 either side of each edge's midpoint.
+  check_staged(a, rt::prism("diamond on top", diamond(0.5, 0.5, 0.625), 1, 2), 2,
+               {{1, 0.375, 1}, {1, 0.625, 1}, {0.625, 1, 1}, {0.375, 1, 1}, {0, 0.625, 1}, {0, 0.375, 1},
+                {0.375, 0, 1}, {0.625, 0, 1}});
+  // The same prism lying against the face x = 1 with its edge x = 1, y = 0.5: the edge's
+  // part inside the face, ending at an input vertex below and at a crossing with the face's
+  // top edge above.
+  check_staged(a, rt::prism("diamond edge on face", diamond(1.5, 0.5, 0.5), 0.25, 0.75), 1,
+               {{1, 0.5, 0.25}, {1, 0.5, 0.75}});
+  check_staged(a, rt::prism("diamond edge across face", diamond(1.5, 0.5, 0.5), 0.5, 1.5), 1,
+               {{1, 0.5, 0.5}, {1, 0.5, 1}});
+  // The octagon 2^20 m from the origin.
+  const Point3 o{0x1p20, -0x1p20, 0x1p20};
+  check_staged(rt::unit_cube_at("far", o), rt::prism("far diamond", diamond(o.x + 0.5, o.y + 0.5, 0.625), o.z + 1, o.z + 2),
+               2,
+               {{o.x + 1, o.y + 0.375, o.z + 1}, {o.x + 1, o.y + 0.625, o.z + 1}, {o.x + 0.625, o.y + 1, o.z + 1},
+                {o.x + 0.375, o.y + 1, o.z + 1}, {o.x, o.y + 0.625, o.z + 1}, {o.x, o.y + 0.375, o.z + 1},
+                {o.x + 0.375, o.y, o.z + 1}, {o.x + 0.625, o.y, o.z + 1}});
+}
+
+BOOST_AUTO_TEST_CASE(only_touching_pairs) {
+  const ConvexPolyhedron a = rt::unit_cube_at("a", {0, 0, 0});
+  BOOST_TEST(!rk::contact_set<rk::Filtered>(a, rt::unit_cube_at("apart", {1 + 0x1p-40, 0, 0})).has_value());
+  BOOST_TEST(!rk::contact_set<rk::Exact>(a, rt::unit_cube_at("overlap", {1 - 0x1p-40, 0, 0})).has_value());
+}
+
+// The README's tolerance: dimension exact, each corner within 1e-9 scale of one in the other
+// list (a corner constructed in double 2^20 m from the origin is rounded by up to 2^-33 m; a
+// wrong corner is off by far more), and no extra or missing corner.
+template <class Policy>
+int check_reference_sets(bool assert) {
+  int misses = 0;
+  for (const auto& pair : rt::contact3d_pairs()) {
+    const auto set = rk::contact_set<Policy>(pair.cp, pair.tp);
+    const bool touch = pair.expected.at("status") == "touch";
+    bool ok = set.has_value() == touch;
+    if (ok && touch) {
+      const auto& reference = pair.expected.at("contact_set");
+      std::vector<Point3> corners;
+      for (const auto& v : reference.at("vertices")) corners.push_back(rt::point(v));
+      ok = same_set(*set, reference.at("dimension").get<int>(), corners, 1e-9 * rt::number(pair.expected.at("scale")));
+    }
+    if (assert) {
+      BOOST_TEST_INFO("pair " << pair.id << " under " << Policy::name);
+      BOOST_TEST(ok);
+    }
+    misses += !ok;
+  }
+  return misses;
+}
+
+BOOST_AUTO_TEST_CASE(contact3d_reference_sets) {
+  BOOST_TEST_REQUIRE(rt::contact3d_pairs().size() == 132u);
+  check_reference_sets<rk::Filtered>(true);
+  check_reference_sets<rk::Exact>(true);
+  check_reference_sets<rk::Checked>(true);
+  BOOST_TEST_MESSAGE("contact3d: Float's contact set differs from the reference on "
+                     << check_reference_sets<rk::Float>(false) << " of 132 pairs");
+}
