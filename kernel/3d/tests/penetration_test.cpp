@@ -87,8 +87,9 @@ bool normal_matches(const Point3& n, const nlohmann::json& penetration) {
                      [&](const nlohmann::json& r) { return rt::distance(n, rt::point(r)) <= 1e-6; });
 }
 
+// `worst` collects the largest |depth - reference| / scale.
 template <class Policy>
-int check_reference_penetrations(bool assert) {
+int check_reference_penetrations(bool assert, double& worst) {
   int misses = 0;
   for (const auto& pair : rt::contact3d_pairs()) {
     const auto p = rk::penetration<Policy>(pair.cp, pair.tp);
@@ -96,7 +97,14 @@ int check_reference_penetrations(bool assert) {
     bool ok = p.has_value() == overlap;
     if (ok && overlap) {
       const auto& reference = pair.expected.at("penetration");
-      ok = rt::metric_matches(p->depth, rt::number(reference.at("depth")), rt::number(pair.expected.at("scale"))) &&
+      const double scale = rt::number(pair.expected.at("scale"));
+      worst = std::max(worst, std::fabs(p->depth - rt::number(reference.at("depth"))) / scale);
+      if constexpr (Policy::kind == rk::PolicyKind::exact) {
+        // Exact rounds the exact root once, as stod rounds the 50-digit reference: within an ulp.
+        BOOST_TEST_INFO("pair " << pair.id);
+        BOOST_TEST(p->depth == rt::number(reference.at("depth")), boost::test_tools::tolerance(0x1p-52));
+      }
+      ok = rt::metric_matches(p->depth, rt::number(reference.at("depth")), scale) &&
            normal_matches(p->normal, reference);
     }
     if (assert) {
@@ -112,11 +120,13 @@ int check_reference_penetrations(bool assert) {
 
 BOOST_AUTO_TEST_CASE(contact3d_reference_penetrations) {
   BOOST_TEST_REQUIRE(rt::contact3d_pairs().size() == 132u);
-  check_reference_penetrations<rk::Filtered>(true);
-  check_reference_penetrations<rk::Exact>(true);
-  check_reference_penetrations<rk::Checked>(true);
+  double filtered = 0, exact = 0, checked = 0, unchecked = 0;
+  check_reference_penetrations<rk::Filtered>(true, filtered);
+  check_reference_penetrations<rk::Exact>(true, exact);
+  check_reference_penetrations<rk::Checked>(true, checked);
+  BOOST_TEST_MESSAGE("contact3d: largest |depth - reference| / scale: Filtered " << filtered << ", Exact " << exact);
   BOOST_TEST_MESSAGE("contact3d: Float's penetration differs from the reference on "
-                     << check_reference_penetrations<rk::Float>(false) << " of 132 pairs");
+                     << check_reference_penetrations<rk::Float>(false, unchecked) << " of 132 pairs");
 }
 
 // Moving tp by (1 + k) depth * normal must give `separate`, by (1 - k) depth * normal
