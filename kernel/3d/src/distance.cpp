@@ -43,6 +43,7 @@ void vertex_face(const ConvexPolyhedron& p, const std::vector<Vector3<FT>>& pv,
     const Vector3<FT>& f0 = pv[face[0]];
     const Vector3<FT> n = detail::cross(pv[face[1]] - f0, pv[face[2]] - f0);
     const FT nn = detail::dot(n, n);
+    if (!(nn > 0)) continue;  // only in double, if |n|^2 underflows (faces below ~1e-80 m)
     for (const Vector3<FT>& x : qv) {
       bool inside = true;
       for (std::size_t i = 0; i < face.size() && inside; ++i) {
@@ -62,6 +63,7 @@ void vertex_edge(const ConvexPolyhedron& p, const std::vector<Vector3<FT>>& pv,
   for (const auto& [i, j] : p.edges()) {
     const Vector3<FT> e = pv[j] - pv[i];
     const FT ee = detail::dot(e, e);
+    if (!(ee > 0)) continue;  // only in double, if |e|^2 underflows (edges below ~1e-150 m)
     for (const Vector3<FT>& x : qv) {
       FT t = detail::dot(x - pv[i], e) / ee;
       if (t < 0) t = 0;

@@ -36,9 +36,11 @@ struct MinimumAxis {
   }
 
   void offer(const Vector3<FT>& n) {
+    const FT nn = detail::dot(n, n);
+    if (!(nn > 0)) return;  // only in double, if |n|^2 underflows: no bound from n
     const FT h = support_extent(n);
     const FT square = h * h;
-    const FT v = (h < 0 ? FT(-square) : square) / detail::dot(n, n);
+    const FT v = (h < 0 ? FT(-square) : square) / nn;
     if (!found || v < value) {
       found = true;
       value = v;
