@@ -30,7 +30,9 @@
 // crossings are constructed: p + t (q - p) with t the ratio of two 2D cross products in the
 // projection along k, in double in a local frame (within a few units of 2^-53 S / sin of the
 // projected crossing angle, S the features' extent), or in exact rationals rounded once under
-// Exact. Corners are listed in no particular order.
+// Exact; measured on the contact3d reference: every corner within 1.1e-16 S of the exact one
+// (tests/contact_set_test.cpp). Corners are listed in no particular order (ordering a polygon's
+// symbolic corners exactly would need predicates on crossings, which the kernel lacks yet).
 
 #include <optional>
 #include <vector>
