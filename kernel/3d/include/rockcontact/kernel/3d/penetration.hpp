@@ -30,10 +30,10 @@
 // u (u / sin a for an edge pair at angle a), which moves its value by at most that angle
 // times S. So the depth is within about (8 + 1/sin a) u S of the exact one, and among
 // candidates tied within that the choice may differ from the exact one: any direction whose
-// h/|n| is within 1e-9 relative of the minimum
-// is an acceptable answer (the contact3d reference lists them as `normals_near`). Measured on
-// the contact3d reference: |depth - exact| <= 2.2e-16 S, every normal within 1e-6 rad of a
-// near-minimal direction (tests/penetration_test.cpp).
+// h/|n| is within 1e-9 relative of the minimum is an acceptable answer (the contact3d
+// reference lists them as `normals_near`). Measured on the contact3d reference:
+// |depth - exact| <= 2.2e-16 S, every normal within 1e-6 rad of a near-minimal direction
+// (tests/penetration_test.cpp).
 
 #include <optional>
 
