@@ -210,8 +210,19 @@ BOOST_AUTO_TEST_CASE(against_cgal_polytope_distance) {
     if (!a || !b || rk::classify_overlap<rk::Exact>(*a, *b) != rk::Overlap::separate) continue;
     const double reference = cgal_distance(*a, *b);
     BOOST_TEST_CONTEXT("trial " << trial) {
-      BOOST_TEST(rk::separation<rk::Exact>(*a, *b)->distance == reference, boost::test_tools::tolerance(0x1p-51));
-      BOOST_TEST(rt::metric_matches(rk::separation<rk::Filtered>(*a, *b)->distance, reference, 2.0));
+      const auto exact = rk::separation<rk::Exact>(*a, *b);
+      const auto filtered = rk::separation<rk::Filtered>(*a, *b);
+      BOOST_TEST(exact->distance == reference, boost::test_tools::tolerance(0x1p-51));
+      BOOST_TEST(rt::metric_matches(filtered->distance, reference, 2.0));
+      // The exact distance does not depend on the order of the pair.
+      BOOST_TEST(rk::separation<rk::Exact>(*b, *a)->distance == exact->distance);
+      // The closest points lie on their blocks and are the distance apart, up to their
+      // rounding (2^-33 m per coordinate 2^20 m from the origin; the pairs' extent is about 2).
+      for (const auto& s : {*exact, *filtered}) {
+        BOOST_TEST(std::fabs(height_above(*a, s.point_a)) <= 1e-9);
+        BOOST_TEST(std::fabs(height_above(*b, s.point_b)) <= 1e-9);
+        BOOST_TEST(std::fabs(rt::distance(s.point_a, s.point_b) - s.distance) <= 1e-9);
+      }
     }
     ++compared;
   }
