@@ -3,18 +3,26 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/intersections.h>
+
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "polyhedra.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/testing/contact3d.hpp"
+#include "rockcontact/testing/seed.hpp"
 
 // The contact set of touching convex polyhedra against closed forms (a square, a rectangle, an
-// octagon cut out by crossings, segments, points, one of each kind of touch) and the contact3d
-// reference (exact dimension and corners of 55 touching pairs).
+// octagon cut out by crossings, segments, points, one of each kind of touch), the contact3d
+// reference (exact dimension and corners of 55 touching pairs), and CGAL's exact 2D
+// intersection of a random tetrahedron's lowest feature with a cube's top face.
 
 namespace rk = rockcontact::kernel;
 namespace rt = rockcontact::testing;
@@ -141,4 +149,88 @@ BOOST_AUTO_TEST_CASE(contact3d_reference_sets) {
   BOOST_TEST_MESSAGE("contact3d: largest corner error / scale: Filtered " << filtered << ", Exact " << exact);
   BOOST_TEST_MESSAGE("contact3d: Float's contact set differs from the reference on "
                      << check_reference_sets<rk::Float>(false, unchecked) << " of 132 pairs");
+}
+
+namespace {
+
+using CgalKernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+using CgalPoint = CgalKernel::Point_2;
+
+// The corners of the tetrahedron's lowest feature (a vertex, an edge or a face, all at z = 1)
+// intersected with the unit square, by CGAL in exact arithmetic; the convex hull drops any
+// collinear or repeated point of CGAL's answer.
+std::vector<Point3> cgal_corners(const std::vector<Point3>& feature) {
+  const CgalKernel::Iso_rectangle_2 square(CgalPoint(0, 0), CgalPoint(1, 1));
+  std::vector<CgalPoint> f;
+  for (const Point3& p : feature) f.emplace_back(p.x, p.y);
+  std::vector<CgalPoint> points;
+  if (f.size() == 1) {
+    if (!square.has_on_unbounded_side(f[0])) points.push_back(f[0]);
+  } else if (f.size() == 2) {
+    if (const auto r = CGAL::intersection(CgalKernel::Segment_2(f[0], f[1]), square)) {
+      if (const auto* p = boost::get<CgalPoint>(&*r)) points.push_back(*p);
+      if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) points.insert(points.end(), {s->source(), s->target()});
+    }
+  } else if (const auto r = CGAL::intersection(CgalKernel::Triangle_2(f[0], f[1], f[2]), square)) {
+    if (const auto* p = boost::get<CgalPoint>(&*r)) points.push_back(*p);
+    if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) points.insert(points.end(), {s->source(), s->target()});
+    if (const auto* t = boost::get<CgalKernel::Triangle_2>(&*r)) points.insert(points.end(), {t->vertex(0), t->vertex(1), t->vertex(2)});
+    if (const auto* v = boost::get<std::vector<CgalPoint>>(&*r)) points.insert(points.end(), v->begin(), v->end());
+  }
+  std::vector<CgalPoint> hull;
+  CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull));
+  std::vector<Point3> out;
+  for (const CgalPoint& p : hull) out.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), 1.0});
+  return out;
+}
+
+}  // namespace
+
+// A tetrahedron with vertices on a 1/8 grid, z in 0..3/8 (many ties, so its lowest feature is
+// often an edge or a face, and its edges often pass through the square's corners or along its
+// sides), is lowered onto the unit cube's top face: its lowest z moved to 1, exactly on the
+// grid. It then lies above the plane z = 1 and meets the cube in its lowest feature's
+// intersection with the top square, which CGAL computes; empty means separate. Both blocks are
+// mapped by a random symmetry of the axes (exact), so the contact plane takes every axis and
+// orientation.
+BOOST_AUTO_TEST_CASE(random_against_cgal_intersection) {
+  std::mt19937_64 rng(rt::seed_for("random_against_cgal_intersection", 19));
+  std::uniform_int_distribution<int> xy(-4, 12), z(0, 3), flip(0, 1);
+  int compared = 0, by_dimension[3] = {0, 0, 0};
+  const ConvexPolyhedron cube = rt::unit_cube_at("cube", {0, 0, 0});
+  for (int trial = 0; trial < 600; ++trial) {
+    std::vector<Point3> v;
+    for (int i = 0; i < 4; ++i) v.push_back({xy(rng) / 8.0, xy(rng) / 8.0, z(rng) / 8.0});
+    const double lowest = std::min({v[0].z, v[1].z, v[2].z, v[3].z});
+    for (Point3& p : v) p.z += 1 - lowest;
+    const auto tet = rt::tetrahedron("tet", v);
+    if (!tet) continue;
+    std::vector<Point3> feature;
+    for (const Point3& p : v) {
+      if (p.z == 1) feature.push_back(p);
+    }
+    const std::vector<Point3> corners = cgal_corners(feature);
+    rt::AxisMap m;
+    std::shuffle(m.axis.begin(), m.axis.end(), rng);
+    for (double& s : m.sign) s = flip(rng) ? -1 : 1;
+    std::vector<Point3> mapped_corners;
+    for (const Point3& p : corners) mapped_corners.push_back(m(p));
+    const ConvexPolyhedron a = rt::mapped(cube, m), b = rt::mapped(*tet, m);
+    const int dimension = std::min<int>(2, static_cast<int>(corners.size()) - 1);
+    BOOST_TEST_CONTEXT("trial " << trial) {
+      for (const auto& set : {rk::contact_set<rk::Filtered>(a, b), rk::contact_set<rk::Exact>(a, b),
+                              rk::contact_set<rk::Checked>(b, a)}) {
+        BOOST_TEST(set.has_value() == !corners.empty());
+        // The crossings are dyadic-rational combinations of grid points; 2^-48 covers a
+        // construction in double at this size.
+        if (set && !corners.empty()) BOOST_TEST(same_set(*set, dimension, mapped_corners, 0x1p-48));
+      }
+    }
+    if (!corners.empty()) ++by_dimension[dimension];
+    ++compared;
+  }
+  BOOST_TEST_MESSAGE("random touching tetrahedra: " << compared << " compared, contact sets of dimension 0/1/2: "
+                                                     << by_dimension[0] << "/" << by_dimension[1] << "/"
+                                                     << by_dimension[2]);
+  BOOST_TEST(std::min({by_dimension[0], by_dimension[1], by_dimension[2]}) >= 20);
 }

@@ -175,16 +175,12 @@ double cgal_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
   return std::sqrt(CGAL::to_double(d2));
 }
 
-// A tetrahedron of random points in the unit cube around `at`, its faces ordered CCW from
-// outside; nullopt when the points are coplanar.
+// A tetrahedron of random points in the unit cube around `at`; nullopt when they are coplanar.
 std::optional<ConvexPolyhedron> random_tetrahedron(std::mt19937_64& rng, Point3 at, const std::string& name) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<Point3> v;
   for (int i = 0; i < 4; ++i) v.push_back({at.x + u(rng), at.y + u(rng), at.z + u(rng)});
-  const rk::Sign s = rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]);
-  if (s == rk::Sign::zero) return std::nullopt;
-  if (s == rk::Sign::positive) std::swap(v[1], v[2]);
-  return ConvexPolyhedron::make(name, std::move(v), {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}});
+  return rt::tetrahedron(name, std::move(v));
 }
 
 }  // namespace

@@ -2,13 +2,19 @@
 // Small polyhedra with known geometry for the 3D metric tests (distance, penetration, contact
 // set), and readers of the contact3d reference numbers.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
+#include "rockcontact/kernel/3d/predicates.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
 
 namespace rockcontact::testing {
 
@@ -60,6 +66,43 @@ inline ConvexPolyhedron crossing_tetrahedron(const std::string& name, double s) 
   return ConvexPolyhedron::make(
       name, {{0.5, 1.5 - s, 0.5 - s}, {0.5, 0.5 - s, 1.5 - s}, {0.0, 2.0 - s, 2.0 - s}, {1.0, 2.0 - s, 2.0 - s}},
       {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}});
+}
+
+// The tetrahedron of four points, its faces ordered CCW from outside; nullopt when coplanar.
+inline std::optional<ConvexPolyhedron> tetrahedron(const std::string& name, std::vector<Point3> v) {
+  const kernel::Sign s = kernel::orient3d<kernel::Exact>(v[0], v[1], v[2], v[3]);
+  if (s == kernel::Sign::zero) return std::nullopt;
+  if (s == kernel::Sign::positive) std::swap(v[1], v[2]);
+  return ConvexPolyhedron::make(name, std::move(v), {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}});
+}
+
+// An exact symmetry of the coordinate axes: coordinate i of the image is sign[i] times
+// coordinate axis[i] of the point.
+struct AxisMap {
+  std::array<int, 3> axis{0, 1, 2};
+  std::array<double, 3> sign{1, 1, 1};
+
+  Point3 operator()(const Point3& p) const {
+    const double c[3] = {p.x, p.y, p.z};
+    return {sign[0] * c[axis[0]], sign[1] * c[axis[1]], sign[2] * c[axis[2]]};
+  }
+  // Reverses orientation (an odd permutation times an even number of flips, or the converse)?
+  bool reverses() const {
+    const int inversions = (axis[0] > axis[1]) + (axis[0] > axis[2]) + (axis[1] > axis[2]);
+    return (inversions % 2 == 1) != (sign[0] * sign[1] * sign[2] < 0);
+  }
+};
+
+// The image of p under m, faces reversed when m reverses orientation so they stay CCW from
+// outside.
+inline ConvexPolyhedron mapped(const ConvexPolyhedron& p, const AxisMap& m) {
+  std::vector<Point3> vertices;
+  for (const Point3& v : p.vertices()) vertices.push_back(m(v));
+  std::vector<ConvexPolyhedron::Face> faces(p.faces().begin(), p.faces().end());
+  if (m.reverses()) {
+    for (auto& f : faces) std::reverse(f.begin(), f.end());
+  }
+  return ConvexPolyhedron::make(p.name() + " mapped", std::move(vertices), std::move(faces));
 }
 
 inline ConvexPolyhedron translated(const ConvexPolyhedron& p, Point3 d) {
