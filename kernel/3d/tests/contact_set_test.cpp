@@ -95,8 +95,8 @@ BOOST_AUTO_TEST_CASE(closed_forms) {
                {{1, 0.5, 0.5}, {1, 0.5, 1}});
   // The octagon 2^20 m from the origin.
   const Point3 o{0x1p20, -0x1p20, 0x1p20};
-  check_staged(rt::unit_cube_at("far", o), rt::prism("far diamond", diamond(o.x + 0.5, o.y + 0.5, 0.625), o.z + 1, o.z + 2),
-               2,
+  check_staged(rt::unit_cube_at("far", o),
+               rt::prism("far diamond", diamond(o.x + 0.5, o.y + 0.5, 0.625), o.z + 1, o.z + 2), 2,
                {{o.x + 1, o.y + 0.375, o.z + 1}, {o.x + 1, o.y + 0.625, o.z + 1}, {o.x + 0.625, o.y + 1, o.z + 1},
                 {o.x + 0.375, o.y + 1, o.z + 1}, {o.x, o.y + 0.625, o.z + 1}, {o.x, o.y + 0.375, o.z + 1},
                 {o.x + 0.375, o.y, o.z + 1}, {o.x + 0.625, o.y, o.z + 1}});
@@ -169,12 +169,18 @@ std::vector<Point3> cgal_corners(const std::vector<Point3>& feature) {
   } else if (f.size() == 2) {
     if (const auto r = CGAL::intersection(CgalKernel::Segment_2(f[0], f[1]), square)) {
       if (const auto* p = boost::get<CgalPoint>(&*r)) points.push_back(*p);
-      if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) points.insert(points.end(), {s->source(), s->target()});
+      if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) {
+        points.insert(points.end(), {s->source(), s->target()});
+      }
     }
   } else if (const auto r = CGAL::intersection(CgalKernel::Triangle_2(f[0], f[1], f[2]), square)) {
     if (const auto* p = boost::get<CgalPoint>(&*r)) points.push_back(*p);
-    if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) points.insert(points.end(), {s->source(), s->target()});
-    if (const auto* t = boost::get<CgalKernel::Triangle_2>(&*r)) points.insert(points.end(), {t->vertex(0), t->vertex(1), t->vertex(2)});
+    if (const auto* s = boost::get<CgalKernel::Segment_2>(&*r)) {
+      points.insert(points.end(), {s->source(), s->target()});
+    }
+    if (const auto* t = boost::get<CgalKernel::Triangle_2>(&*r)) {
+      points.insert(points.end(), {t->vertex(0), t->vertex(1), t->vertex(2)});
+    }
     if (const auto* v = boost::get<std::vector<CgalPoint>>(&*r)) points.insert(points.end(), v->begin(), v->end());
   }
   std::vector<CgalPoint> hull;

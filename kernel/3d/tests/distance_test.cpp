@@ -138,7 +138,8 @@ int check_reference_distances(bool assert, double& worst) {
       }
       ok = rt::metric_matches(s->distance, reference, scale) &&
            std::fabs(rt::distance(s->point_a, s->point_b) - s->distance) <= slack &&
-           std::fabs(height_above(pair.cp, s->point_a)) <= slack && std::fabs(height_above(pair.tp, s->point_b)) <= slack;
+           std::fabs(height_above(pair.cp, s->point_a)) <= slack &&
+           std::fabs(height_above(pair.tp, s->point_b)) <= slack;
     }
     if (assert) {
       BOOST_TEST_INFO("pair " << pair.id << " under " << Policy::name);
