@@ -1,0 +1,108 @@
+#include "rockcontact/kernel/3d/penetration.hpp"
+
+#include <vector>
+
+#include "local_vector.hpp"
+#include "rockcontact/kernel/3d/overlap.hpp"
+#include "rockcontact/kernel/core/detail/exact_number.hpp"
+#include "rockcontact/kernel/core/predicate_scope.hpp"
+
+namespace rockcontact::kernel {
+namespace {
+
+using detail::Vector3;
+
+template <class FT>
+struct MinimumAxis {
+  const std::vector<Vector3<FT>>& cp;
+  const std::vector<Vector3<FT>>& tp;
+  bool found = false;
+  FT value{};  // h |h| / |n|^2 of the best candidate
+  FT extent{};
+  Vector3<FT> normal{};
+
+  // The support extent h(n) of cp - tp.
+  FT support_extent(const Vector3<FT>& n) const {
+    FT high = detail::dot(cp[0], n), low = detail::dot(tp[0], n);
+    for (const auto& a : cp) {
+      const FT s = detail::dot(a, n);
+      if (s > high) high = s;
+    }
+    for (const auto& b : tp) {
+      const FT s = detail::dot(b, n);
+      if (s < low) low = s;
+    }
+    return high - low;
+  }
+
+  void offer(const Vector3<FT>& n) {
+    const FT nn = detail::dot(n, n);
+    if (!(nn > 0)) return;  // only in double, if |n|^2 underflows: no bound from n
+    const FT h = support_extent(n);
+    const FT square = h * h;
+    const FT v = (h < 0 ? FT(-square) : square) / nn;
+    if (!found || v < value) {
+      found = true;
+      value = v;
+      extent = h;
+      normal = n;
+    }
+  }
+};
+
+template <class FT>
+std::vector<Vector3<FT>> local_vertices(const ConvexPolyhedron& p, const Point3& origin) {
+  std::vector<Vector3<FT>> out;
+  out.reserve(p.size());
+  for (const Point3& v : p.vertices()) out.push_back(detail::local<FT>(v, origin));
+  return out;
+}
+
+template <class FT>
+Vector3<FT> face_normal(const std::vector<Vector3<FT>>& v, const ConvexPolyhedron::Face& face) {
+  return detail::cross(v[face[1]] - v[face[0]], v[face[2]] - v[face[0]]);
+}
+
+template <class FT>
+Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp) {
+  const Point3 origin = cp[0];
+  const auto cv = local_vertices<FT>(cp, origin);
+  const auto tv = local_vertices<FT>(tp, origin);
+  MinimumAxis<FT> best{cv, tv};
+  for (const auto& face : cp.faces()) best.offer(face_normal(cv, face));
+  for (const auto& face : tp.faces()) best.offer(-face_normal(tv, face));
+  for (const auto& [i, j] : cp.edges()) {
+    for (const auto& [k, l] : tp.edges()) {
+      const Vector3<FT> n = detail::cross(cv[j] - cv[i], tv[l] - tv[k]);
+      if (detail::is_zero(n)) continue;  // parallel edges: no facet of cp - tp
+      best.offer(n);
+      best.offer(-n);
+    }
+  }
+  using Ops = detail::NumberOps<FT>;
+  const FT length = Ops::sqrt(detail::dot(best.normal, best.normal));
+  const FT depth = best.extent > 0 ? Ops::sqrt(best.value) : FT(0);
+  return {Ops::to_double(depth),
+          {Ops::to_double(best.normal.x / length), Ops::to_double(best.normal.y / length),
+           Ops::to_double(best.normal.z / length)}};
+}
+
+}  // namespace
+
+template <NumberPolicy Policy>
+std::optional<Penetration> penetration(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp) {
+  Overlap verdict;
+  {
+    PredicateScope scope;
+    verdict = classify_overlap<Policy>(cp, tp);
+  }
+  if (verdict != Overlap::overlap) return std::nullopt;
+  return minimum_translation<detail::ConstructionType<Policy>>(cp, tp);
+}
+
+#define ROCKCONTACT_INSTANTIATE(P) \
+  template std::optional<Penetration> penetration<P>(const ConvexPolyhedron&, const ConvexPolyhedron&);
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
+#undef ROCKCONTACT_INSTANTIATE
+
+}  // namespace rockcontact::kernel
