@@ -333,6 +333,58 @@ BOOST_AUTO_TEST_CASE(vertex_on_a_vertex) {
   });
 }
 
+// Two unit cubes stacked with coincident footprints: the four touching corner pairs are
+// vertex-vertex (each found from both blocks, kept once), and every plane that keeps the two
+// corner cones apart is horizontal (a side face has the other block's edge going into it), so
+// the normal is (0, 0, 1) whichever candidate the tie-break picks.
+BOOST_AUTO_TEST_CASE(stacked_cubes_corner_on_corner) {
+  const ConvexPolyhedron lower = box("lower", {0, 0, 0}, {1, 1, 1});
+  const ConvexPolyhedron upper = box("upper", {0, 0, 1}, {1, 1, 2});
+  for_staged([&](auto policy) {
+    using P = decltype(policy);
+    BOOST_TEST_CONTEXT(P::name) {
+      const auto cs = rk::contact_constraints<P>(lower, upper);
+      BOOST_TEST_REQUIRE(cs.size() == 4u);
+      for (const ContactConstraint& c : cs) {
+        BOOST_TEST((c.type == ConstraintType::vertex_vertex));
+        BOOST_TEST((c.normal == Point3{0, 0, 1}));
+        BOOST_TEST(c.point_cp.z == 1.0);
+        BOOST_TEST((c.point_cp == c.point_tp));
+        BOOST_TEST(c.gap == 0.0);
+        BOOST_TEST(!c.candidate_normals.empty());
+        for (const Point3& n : c.candidate_normals) BOOST_TEST((n == Point3{0, 0, 1}));
+      }
+    }
+  });
+}
+
+// Internal faces are no exit: a base of two unit boxes side by side (parts meeting at x = 1) and
+// a cube pushed 0.01 into part 0's top, two of its bottom corners 0.005 from the internal face
+// x = 1. Were that face an exit, those corners would take it (0.005 < 0.01) with normal (1, 0, 0);
+// as it is internal, all four corners exit through the top: vertex-face on part 0's top face,
+// normal (0, 0, 1), gap -0.01 (within 16 ulps of the 2 m scale under Filtered, as above). Part 1
+// is not reached, and the cube's vertical edges and the part's seam edge are on the same side
+// of their common plane, so no edge-edge constraint either.
+BOOST_AUTO_TEST_CASE(internal_face_is_no_exit) {
+  const std::vector<ConvexPolyhedron> base = {box("part 0", {0, 0, -1}, {1, 1, 0}),
+                                              box("part 1", {1, 0, -1}, {2, 1, 0})};
+  const std::vector<ConvexPolyhedron> cube = {box("cube", {0.5, 0.25, -0.01}, {0.995, 0.75, 0.99})};
+  for_staged([&](auto policy) {
+    using P = decltype(policy);
+    BOOST_TEST_CONTEXT(P::name) {
+      const auto cs = rk::contact_constraints<P>(std::span<const ConvexPolyhedron>(base),
+                                                 std::span<const ConvexPolyhedron>(cube));
+      BOOST_TEST_REQUIRE(cs.size() == 4u);
+      for (const ContactConstraint& c : cs) {
+        BOOST_TEST((c.type == ConstraintType::vertex_face));
+        BOOST_TEST((c.cp_feature == Feature{Feature::Kind::face, box_top, 0}));
+        BOOST_TEST((c.normal == Point3{0, 0, 1}));
+        BOOST_TEST(std::fabs(c.gap + 0.01) <= 16 * 2 * 0x1p-52);
+      }
+    }
+  });
+}
+
 // A cube 0.1 above the box's top face: within a tolerance of 0.1 (the same double as the gap,
 // included exactly) its four bottom corners give vertex-face constraints with gap 0.1 (Exact: the
 // double 0.1 exactly; Filtered: within 16 ulps of 4 m, as above); within 0.0999, none.
