@@ -477,8 +477,9 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
       break;
   }
   choose_plane<Policy>(d, x, v, y, *at);
-  // A touch with no separating candidate happens only across an internal face (the contact
-  // lies inside the other block's union): no constraint.
+  // A touch with no separating candidate: the blocks overlap around the touching point (a
+  // corner of one on a coincident corner or edge of the other, as with identical blocks), or
+  // the only separating plane is an internal face. No plane to push along: no constraint.
   if (d.line_normal && d.touching) return std::nullopt;
   return d;
 }
@@ -498,18 +499,41 @@ Sign common_side(const Point3& a, const Point3& b, const Point3& c, const Point3
   return side;
 }
 
-// Is the point a + (S / N2)(b - a) in the closed part `t` (below or on all its face planes)?
-// Each face: N2 n_f . (a - f0) + S n_f . (b - a) <= 0, degree 7 (N2 = |n|^2 > 0 scales it).
-template <NumberPolicy Policy, class S, class N2>
-bool contains_on_edge(const Topology& t, const Point3& a, const Point3& b, const S& s, const N2& n2) {
-  for (const auto& loop : t.poly->faces()) {
+// Does the segment [a, b] meet the interior of part `t`? With h_f(a), h_f(b) the (scaled) heights
+// of the endpoints over face f, the segment's points a + s (b - a) strictly below f's plane form
+// an interval of s: s > h_f(a) / (h_f(a) - h_f(b)) when h_f(a) >= 0 > h_f(b), s < the same ratio
+// when h_f(a) < 0 <= h_f(b), empty when neither is negative. The open intervals meet when every
+// lower bound (face f) is below every upper bound (face g), i.e. (with the positive
+// denominators h_f(a) - h_f(b) and h_g(b) - h_g(a)) when h_f(a) h_g(b) - h_g(a) h_f(b) < 0,
+// degree 6.
+template <NumberPolicy Policy>
+bool segment_meets(const Topology& t, const Point3& a, const Point3& b) {
+  const auto height = [&](std::uint32_t f, const Point3& x) {
+    const auto& loop = t.face(f);
     const Point3 f0 = t.p(loop[0]), f1 = t.p(loop[1]), f2 = t.p(loop[2]);
-    const Sign side = decide<Policy>([&](auto as) {
+    return [=](auto as) {
       using T = typename decltype(as)::type;
-      const Vec<T> nf = cross(sub<T>(f0, f1), sub<T>(f0, f2));
-      return T(n2(as) * dot(nf, sub<T>(f0, a))) + T(s(as) * dot(nf, sub<T>(a, b)));
-    });
-    if (side == Sign::positive) return false;
+      return dot(cross(sub<T>(f0, f1), sub<T>(f0, f2)), sub<T>(f0, x));
+    };
+  };
+  std::vector<std::uint32_t> lower, upper;
+  for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
+    const auto& loop = t.face(f);
+    const Sign ha = orient3d<Policy>(t.p(loop[0]), t.p(loop[1]), t.p(loop[2]), a);
+    const Sign hb = orient3d<Policy>(t.p(loop[0]), t.p(loop[1]), t.p(loop[2]), b);
+    if (ha != Sign::negative && hb != Sign::negative) return false;
+    if (ha != Sign::negative) lower.push_back(f);
+    if (hb != Sign::negative) upper.push_back(f);
+  }
+  for (std::uint32_t f : lower) {
+    for (std::uint32_t g : upper) {
+      const auto fa = height(f, a), fb = height(f, b), ga = height(g, a), gb = height(g, b);
+      const Sign order = decide<Policy>([&](auto as) {
+        using T = typename decltype(as)::type;
+        return T(fa(as) * gb(as)) - T(ga(as) * fb(as));
+      });
+      if (order != Sign::negative) return false;
+    }
   }
   return true;
 }
@@ -555,8 +579,7 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   };
   const Sign gap_sign = decide<Policy>(gap);
   if (gap_sign == Sign::positive && !within<Policy>(Distance{gap, n2}, tolerance)) return std::nullopt;
-  if (gap_sign == Sign::negative &&
-      (!contains_on_edge<Policy>(y, a, b, s, n2) || !contains_on_edge<Policy>(x, c, d, u, n2))) {
+  if (gap_sign == Sign::negative && (!segment_meets<Policy>(y, a, b) || !segment_meets<Policy>(x, c, d))) {
     return std::nullopt;
   }
   Decision out{};

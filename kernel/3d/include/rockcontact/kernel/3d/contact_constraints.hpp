@@ -30,9 +30,11 @@
 //      p_e, p_g (§2.1, eq. 2-3) are interior to both edges (0 < s, t < 1, exact) is a crossing
 //      edge-edge contact when the plane through e with normal n = (b - a) x (d - c) supports X
 //      (both faces of X at e on one side), the parallel plane through g supports Y on the other
-//      side, the gap between the planes is <= tolerance, and, for a negative gap, p_e lies in Y
-//      and p_g in X (closed, exact): the two edges really cut into each other there, not only in
-//      projection. The normal is n oriented away from X.
+//      side, the gap between the planes is <= tolerance, and, for a negative gap, e meets the
+//      interior of Y and g the interior of X (exact): the edges cut into the other block, not
+//      only cross in projection (and never for a touching pair, whose interiors are disjoint). (Asking p_e in Y and p_g in X instead would miss
+//      crossings where a block's wedge leans sideways: the edges interpenetrate next to the
+//      closest points, not at them.) The normal is n oriented away from X.
 //   3. Vertex-edge and vertex-vertex contacts have no unique plane (§2.2). The shortest-exit
 //      rule (§2.2.1) chooses one among candidate planes neighbouring the contact: the faces of
 //      Y at the edge (or at the vertex w), the faces of X at v, and the planes spanned by an
@@ -70,7 +72,10 @@
 // edge or corner of a block touches each convex part meeting there, and each part pair gives one
 // constraint with that part's plane (chosen by shortest exit among the part's candidates), so a
 // concave angle is split into its convex sub-angles, one plane each, as in Figures 4 and 5.
-// Known limit: an edge where two parts meet flush (inside a flat face of the union) still
+// Known limits: a vertex touching the other block (on its boundary) where the two blocks
+// overlap around it, so that no candidate plane passes the no-overlap check (a corner on a
+// coincident corner of an overlapping block; identical blocks), gives no constraint, as there is
+// no plane to push along: two identical blocks yield none at all. An edge where two parts meet flush (inside a flat face of the union) still
 // counts as an edge, so a face resting across it gets extra corner constraints there (with the
 // right normal and gap).
 //
