@@ -11,6 +11,8 @@
 #include <initializer_list>
 #include <map>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "rockcontact/kernel/3d/predicates.hpp"
@@ -276,23 +278,13 @@ std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
   return Located{Feature::Kind::face, *best, true, false};
 }
 
-
-// Step 1 of the header: where vertex v of X stands against Y, if it is a contact. The three
-// region tests are exclusive for a v outside or on Y (its closest point lies in the relative
-// interior of exactly one feature), so the first match is the answer.
+// Step 1 of the header for a vertex v on or outside Y: the feature whose relative interior holds
+// v's closest point, if within the tolerance. The three region tests are exclusive (the closest
+// point lies in the relative interior of exactly one feature), so the first match is the answer.
 template <NumberPolicy Policy>
-std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double tolerance) {
+std::optional<Located> closest_feature(const Point3& v, const Topology& y, const std::vector<Sign>& heights,
+                                       bool touching, double tolerance) {
   const ConvexPolyhedron& poly = *y.poly;
-  std::vector<Sign> heights(poly.faces().size());
-  bool inside = true, touching = true;
-  for (std::uint32_t f = 0; f < heights.size(); ++f) {
-    const auto& loop = y.face(f);
-    heights[f] = orient3d<Policy>(y.p(loop[0]), y.p(loop[1]), y.p(loop[2]), v);
-    inside &= heights[f] == Sign::negative;
-    touching &= heights[f] != Sign::positive;
-  }
-  if (inside) return shortest_exit_face<Policy>(v, y);
-  if (!touching && !(tolerance > 0.0)) return std::nullopt;
   for (std::uint32_t w = 0; w < poly.size(); ++w) {
     const Point3 pw = y.p(w);
     const bool region = std::all_of(y.neighbours[w].begin(), y.neighbours[w].end(), [&](std::uint32_t u) {
@@ -341,6 +333,28 @@ std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double 
     return Located{Feature::Kind::face, f, false, touching};
   }
   return std::nullopt;  // only under Float, whose rounded signs may contradict each other
+}
+
+// Step 1 of the header: where vertex v of X stands against Y, if it is a contact.
+template <NumberPolicy Policy>
+std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double tolerance) {
+  std::vector<Sign> heights(y.internal.size());
+  bool inside = true, touching = true;
+  for (std::uint32_t f = 0; f < heights.size(); ++f) {
+    const auto& loop = y.face(f);
+    heights[f] = orient3d<Policy>(y.p(loop[0]), y.p(loop[1]), y.p(loop[2]), v);
+    inside &= heights[f] == Sign::negative;
+    touching &= heights[f] != Sign::positive;
+  }
+  if (inside) return shortest_exit_face<Policy>(v, y);
+  if (!touching) {
+    if (!(tolerance > 0.0)) return std::nullopt;
+    // v's distance to Y is at least its height over any face: a cheap exact rejection.
+    for (std::uint32_t f = 0; f < heights.size(); ++f) {
+      if (heights[f] == Sign::positive && !within<Policy>(face_height(y, f, v), tolerance)) return std::nullopt;
+    }
+  }
+  return closest_feature<Policy>(v, y, heights, touching, tolerance);
 }
 
 // The tangent cone of a block at a contact point, by generators: rays (from, to) and lines
@@ -742,6 +756,10 @@ std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {
 template <NumberPolicy Policy>
 std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhedron> cp_parts,
                                                    std::span<const ConvexPolyhedron> tp_parts, double tolerance) {
+  if (!std::isfinite(tolerance) || tolerance < 0.0) {
+    throw std::invalid_argument("contact_constraints: the tolerance must be finite and >= 0 (metres), got " +
+                                std::to_string(tolerance));
+  }
   std::vector<Decision> decisions;
   {
     const PredicateScope scope;

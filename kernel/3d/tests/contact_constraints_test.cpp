@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -390,13 +391,16 @@ BOOST_AUTO_TEST_CASE(internal_face_is_no_exit) {
 
 // A cube 0.1 above the box's top face: within a tolerance of 0.1 (the same double as the gap,
 // included exactly) its four bottom corners give vertex-face constraints with gap 0.1 (Exact: the
-// double 0.1 exactly; Filtered: within 16 ulps of 4 m, as above); within 0.0999, none.
+// double 0.1 exactly; Filtered: within 16 ulps of 4 m, as above); within 0.0999, none. A
+// negative or NaN tolerance is refused.
 BOOST_AUTO_TEST_CASE(separated_within_tolerance) {
   const ConvexPolyhedron base = box("base", {0, 0, -1}, {4, 4, 0});
   const ConvexPolyhedron cube = box("cube", {1, 1, 0.1}, {2, 2, 1.1});
   for_staged([&](auto policy) {
     using P = decltype(policy);
     BOOST_TEST_CONTEXT(P::name) {
+      BOOST_CHECK_THROW(rk::contact_constraints<P>(base, cube, -0.1), std::invalid_argument);
+      BOOST_CHECK_THROW(rk::contact_constraints<P>(base, cube, NAN), std::invalid_argument);
       BOOST_TEST(rk::contact_constraints<P>(base, cube, 0.0999).empty());
       const auto cs = rk::contact_constraints<P>(base, cube, 0.1);
       BOOST_TEST_REQUIRE(cs.size() == 4u);

@@ -135,7 +135,8 @@ struct ContactConstraint {
 
 // The constraints of two convex blocks closer than `tolerance` (metres, >= 0), touching or
 // overlapping: vertex contacts of cp's vertices, then tp's, then crossing edge pairs by cp edge
-// and tp edge index. Empty for a pair farther apart than the tolerance.
+// and tp edge index. Empty for a pair farther apart than the tolerance. Throws
+// std::invalid_argument for a negative or non-finite tolerance.
 template <NumberPolicy Policy>
 std::vector<ContactConstraint> contact_constraints(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp,
                                                    double tolerance = 0.0);
