@@ -1,0 +1,802 @@
+// Contact constraints of two polyhedral blocks (contact_constraints.hpp has the method). The
+// work of a part pair runs in two phases, as the PredicateScope contract asks: decide (exact
+// signs only: which features touch, which plane wins) into Decision records, then construct
+// the points, normals and gaps from them in the policy's construction number type.
+
+#include "rockcontact/kernel/3d/contact_constraints.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rockcontact/kernel/3d/predicates.hpp"
+#include "rockcontact/kernel/core/detail/exact_number.hpp"
+#include "rockcontact/kernel/core/detail/staged_sign.hpp"
+#include "rockcontact/kernel/core/predicate_scope.hpp"
+
+namespace rockcontact::kernel {
+namespace {
+
+using detail::As;
+using detail::difference;
+
+// ---- vectors generic over the number type ---------------------------------------------------
+
+template <class T>
+struct Vec {
+  T x, y, z;
+};
+
+// b - a from input doubles, each component T(b) - T(a).
+template <class T>
+Vec<T> sub(const Point3& a, const Point3& b) {
+  return {difference<T>(b.x, a.x), difference<T>(b.y, a.y), difference<T>(b.z, a.z)};
+}
+
+template <class T>
+Vec<T> cross(const Vec<T>& u, const Vec<T>& v) {
+  return {T(u.y * v.z) - T(u.z * v.y), T(u.z * v.x) - T(u.x * v.z), T(u.x * v.y) - T(u.y * v.x)};
+}
+
+template <class T>
+T dot(const Vec<T>& u, const Vec<T>& v) {
+  return T(T(u.x * v.x) + T(u.y * v.y)) + T(u.z * v.z);
+}
+
+// ---- exact signs of polynomial formulas ---------------------------------------------------
+
+// The sign of a formula f(As<T>) of input doubles: in double under Float; under the staged
+// policies by the interval stage, then CGAL::Mpzf (core/detail/staged_sign.hpp). The formulas
+// here (degree 2 to 8 dot and cross products) have no double filter of their own: the interval
+// stage is their filter. Checked also evaluates exactly and compares.
+template <NumberPolicy Policy, class Formula>
+Sign decide(const Formula& f) {
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    detail::count_call(PredicateKind::triple);
+    return sign_of(f(As<double>{}));
+  } else {
+    detail::count_call(PredicateKind::triple);
+    const Sign staged = detail::interval_then_exact_sign(PredicateKind::triple, f);
+    if constexpr (Policy::kind == PolicyKind::checked) {
+      const Sign exact = detail::exact_sign(f);
+      if (exact != staged) detail::throw_disagreement(PredicateKind::triple, {}, staged, exact);
+    }
+    return staged;
+  }
+}
+
+// A signed distance N / sqrt(D), D > 0, as two formulas of input doubles (and the tolerance).
+// compare_distances gives the exact sign of N1 / sqrt(D1) - N2 / sqrt(D2): by the signs of N1
+// and N2 when they differ, else by the sign of N1^2 D2 - N2^2 D1 (flipped when both negative).
+template <class N, class D>
+struct Distance {
+  N numerator;
+  D denominator_squared;
+};
+template <class N, class D>
+Distance(N, D) -> Distance<N, D>;
+
+template <NumberPolicy Policy, class N1, class D1, class N2, class D2>
+Sign compare_distances(const Distance<N1, D1>& a, const Distance<N2, D2>& b) {
+  const Sign sa = decide<Policy>(a.numerator), sb = decide<Policy>(b.numerator);
+  if (sa != sb) return static_cast<int>(sa) > static_cast<int>(sb) ? Sign::positive : Sign::negative;
+  if (sa == Sign::zero) return Sign::zero;
+  const Sign squares = decide<Policy>([&](auto as) {
+    using T = typename decltype(as)::type;
+    const T na = a.numerator(as), nb = b.numerator(as);
+    return T(T(na * na) * b.denominator_squared(as)) - T(T(nb * nb) * a.denominator_squared(as));
+  });
+  return sa == Sign::positive ? squares : -squares;
+}
+
+// Is N / sqrt(D) <= tolerance? Exactly: N <= 0, or N^2 - tolerance^2 D <= 0.
+template <NumberPolicy Policy, class N, class D>
+bool within(const Distance<N, D>& d, double tolerance) {
+  if (decide<Policy>(d.numerator) != Sign::positive) return true;
+  return decide<Policy>([&](auto as) {
+           using T = typename decltype(as)::type;
+           const T n = d.numerator(as);
+           return T(n * n) - T(T(T(tolerance) * T(tolerance)) * d.denominator_squared(as));
+         }) != Sign::positive;
+}
+
+// Is sqrt(Q / D) <= tolerance, for a squared distance Q / D (D > 0)? Exactly: Q - tolerance^2 D <= 0.
+template <NumberPolicy Policy, class Q, class D>
+bool within_squared(const Q& q, const D& d, double tolerance) {
+  return decide<Policy>([&](auto as) {
+           using T = typename decltype(as)::type;
+           return q(as) - T(T(T(tolerance) * T(tolerance)) * d(as));
+         }) != Sign::positive;
+}
+
+// ---- topology of a convex part ----------------------------------------------------------------
+
+struct Topology {
+  const ConvexPolyhedron* poly;
+  std::uint32_t part;
+  std::vector<std::vector<std::uint32_t>> neighbours;    // per vertex
+  std::vector<std::vector<std::uint32_t>> vertex_faces;  // per vertex
+  // Per edge (first < second): [0] the face whose loop runs first -> second, [1] the other.
+  std::vector<std::array<std::uint32_t, 2>> edge_faces;
+  std::vector<bool> internal;  // per face
+
+  const Point3& p(std::uint32_t i) const { return (*poly)[i]; }
+  const ConvexPolyhedron::Face& face(std::uint32_t f) const { return poly->faces()[f]; }
+  // A vertex of face f off the edge (i, j).
+  std::uint32_t off_edge(std::uint32_t f, std::uint32_t i, std::uint32_t j) const {
+    for (std::uint32_t k : face(f)) {
+      if (k != i && k != j) return k;
+    }
+    return i;  // unreachable: a face has at least three distinct vertices
+  }
+};
+
+Topology make_topology(const ConvexPolyhedron& poly, std::uint32_t part) {
+  Topology t{&poly, part, {}, {}, {}, std::vector<bool>(poly.faces().size(), false)};
+  t.neighbours.resize(poly.size());
+  t.vertex_faces.resize(poly.size());
+  std::map<ConvexPolyhedron::Edge, std::uint32_t> edge_index;
+  for (std::uint32_t e = 0; e < poly.edges().size(); ++e) {
+    const auto [i, j] = poly.edges()[e];
+    edge_index[poly.edges()[e]] = e;
+    t.neighbours[i].push_back(j);
+    t.neighbours[j].push_back(i);
+  }
+  t.edge_faces.resize(poly.edges().size());
+  for (std::uint32_t f = 0; f < poly.faces().size(); ++f) {
+    const auto& loop = poly.faces()[f];
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t i = loop[k], j = loop[(k + 1) % loop.size()];
+      t.vertex_faces[i].push_back(f);
+      t.edge_faces[edge_index.at({std::min(i, j), std::max(i, j)})][i < j ? 0 : 1] = f;
+    }
+  }
+  return t;
+}
+
+// Marks the faces of each part that lie against a face of another part of the same block: all
+// the other face's vertices on the plane, the other part on the plane's outer side.
+template <NumberPolicy Policy>
+void mark_internal_faces(std::vector<Topology>& parts) {
+  for (Topology& t : parts) {
+    for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
+      const auto& loop = t.face(f);
+      const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+      for (const Topology& other : parts) {
+        if (&other == &t || t.internal[f]) continue;
+        bool above = false;
+        for (const Point3& x : other.poly->vertices()) above |= orient3d<Policy>(f0, f1, f2, x) == Sign::positive;
+        if (!above) continue;
+        for (const auto& g : other.poly->faces()) {
+          const bool on_plane = std::all_of(g.begin(), g.end(), [&](std::uint32_t k) {
+            return orient3d<Policy>(f0, f1, f2, other.p(k)) == Sign::zero;
+          });
+          if (on_plane) t.internal[f] = true;
+        }
+      }
+    }
+  }
+}
+
+// ---- the decisions ----------------------------------------------------------------------------
+
+// A plane by its implicit normal sigma (p1 - p0) x (q1 - q0), oriented from the block X whose
+// vertex or edge is located towards the other block Y.
+struct Plane {
+  Point3 p0, p1, q0, q1;
+  int sigma = 1;
+};
+
+template <class T>
+Vec<T> plane_normal(const Plane& plane) {
+  const Vec<T> n = cross(sub<T>(plane.p0, plane.p1), sub<T>(plane.q0, plane.q1));
+  if (plane.sigma > 0) return n;
+  return {T(0) - n.x, T(0) - n.y, T(0) - n.z};
+}
+
+Plane face_plane(const Topology& t, std::uint32_t f, int sigma) {
+  const auto& loop = t.face(f);
+  return {t.p(loop[0]), t.p(loop[1]), t.p(loop[0]), t.p(loop[2]), sigma};
+}
+
+// What a located vertex, or an edge pair, touches; enough to construct the constraint.
+struct Decision {
+  ConstraintType type;
+  bool x_is_cp;          // X (the located vertex's block, cp for edge pairs) is cp
+  Feature x_feature, y_feature;
+  Point3 x0, x1;         // X's vertex (x0), or edge [x0, x1]
+  Point3 y0, y1;         // Y's face point (y0 on the plane), edge [y0, y1], or vertex (y0)
+  Plane plane;           // the contact plane's normal, X -> Y
+  bool line_normal;      // no candidate passed: the normal is the unit of point_y - point_x
+  bool touching;         // the two contact points coincide (exactly)
+  Sign gap_sign;         // exact sign of the gap, when known (zero forces gap = 0)
+  std::vector<Plane> candidates;
+};
+
+// Sign of ((q - p) x n_f) . (v - p) for the edge p -> q of face f's loop: positive when v
+// projects onto f's plane outside the edge's line (degree 4).
+template <NumberPolicy Policy>
+Sign edge_side(const Topology& t, std::uint32_t f, const Point3& p, const Point3& q, const Point3& v) {
+  const auto& loop = t.face(f);
+  const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+  return decide<Policy>([&](auto as) {
+    using T = typename decltype(as)::type;
+    const Vec<T> n = cross(sub<T>(f0, f1), sub<T>(f0, f2));
+    return dot(cross(sub<T>(p, q), n), sub<T>(p, v));
+  });
+}
+
+// Sign of (v - a) . (b - a) (degree 2).
+template <NumberPolicy Policy>
+Sign dot_sign(const Point3& a, const Point3& v, const Point3& b) {
+  return decide<Policy>([&](auto as) {
+    using T = typename decltype(as)::type;
+    return dot(sub<T>(a, v), sub<T>(a, b));
+  });
+}
+
+// Height of v over face f, h_f = n_f . (v - f0) / |n_f|.
+auto face_height(const Topology& t, std::uint32_t f, Point3 v) {
+  const auto& loop = t.face(f);
+  const Point3 f0 = t.p(loop[0]), f1 = t.p(loop[1]), f2 = t.p(loop[2]);
+  return Distance{[=](auto as) {
+                    using T = typename decltype(as)::type;
+                    return dot(cross(sub<T>(f0, f1), sub<T>(f0, f2)), sub<T>(f0, v));
+                  },
+                  [=](auto as) {
+                    using T = typename decltype(as)::type;
+                    const Vec<T> n = cross(sub<T>(f0, f1), sub<T>(f0, f2));
+                    return dot(n, n);
+                  }};
+}
+
+struct Located {
+  Feature::Kind kind;
+  std::uint32_t index;
+  bool inside;    // v strictly inside Y: a penetrating vertex
+  bool touching;  // v on Y's boundary
+};
+
+// The shortest exit of a vertex strictly inside Y: the non-internal face it is least deep
+// below (eq. 4), ties to the lowest index.
+template <NumberPolicy Policy>
+std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
+  std::optional<std::uint32_t> best;
+  for (std::uint32_t f = 0; f < y.internal.size(); ++f) {
+    if (y.internal[f]) continue;
+    if (!best || compare_distances<Policy>(face_height(y, f, v), face_height(y, *best, v)) == Sign::positive) {
+      best = f;
+    }
+  }
+  if (!best) return std::nullopt;
+  return Located{Feature::Kind::face, *best, true, false};
+}
+
+// Step 1 of the header for a vertex v on or outside Y: the feature whose relative interior holds
+// v's closest point, if within the tolerance. The three region tests are exclusive (the closest
+// point lies in the relative interior of exactly one feature), so the first match is the answer.
+template <NumberPolicy Policy>
+std::optional<Located> closest_feature(const Point3& v, const Topology& y, const std::vector<Sign>& heights,
+                                       bool touching, double tolerance) {
+  const ConvexPolyhedron& poly = *y.poly;
+  for (std::uint32_t w = 0; w < poly.size(); ++w) {
+    const Point3 pw = y.p(w);
+    const bool region = std::all_of(y.neighbours[w].begin(), y.neighbours[w].end(), [&](std::uint32_t u) {
+      return dot_sign<Policy>(pw, v, y.p(u)) != Sign::positive;
+    });
+    if (!region) continue;
+    const auto squared = [&](auto as) {
+      using T = typename decltype(as)::type;
+      const Vec<T> d = sub<T>(pw, v);
+      return dot(d, d);
+    };
+    if (!touching && !within_squared<Policy>(squared, [](auto as) { return typename decltype(as)::type(1); },
+                                             tolerance)) {
+      return std::nullopt;
+    }
+    return Located{Feature::Kind::vertex, w, false, touching};
+  }
+  for (std::uint32_t e = 0; e < poly.edges().size(); ++e) {
+    const Point3 a = y.p(poly.edges()[e].first), b = y.p(poly.edges()[e].second);
+    const bool region = dot_sign<Policy>(a, v, b) == Sign::positive && dot_sign<Policy>(b, v, a) == Sign::positive &&
+                        edge_side<Policy>(y, y.edge_faces[e][0], a, b, v) != Sign::negative &&
+                        edge_side<Policy>(y, y.edge_faces[e][1], b, a, v) != Sign::negative;
+    if (!region) continue;
+    const auto squared = [&](auto as) {
+      using T = typename decltype(as)::type;
+      const Vec<T> c = cross(sub<T>(a, v), sub<T>(a, b));
+      return dot(c, c);
+    };
+    const auto length = [&](auto as) {
+      using T = typename decltype(as)::type;
+      const Vec<T> d = sub<T>(a, b);
+      return dot(d, d);
+    };
+    if (!touching && !within_squared<Policy>(squared, length, tolerance)) return std::nullopt;
+    return Located{Feature::Kind::edge, e, false, touching};
+  }
+  for (std::uint32_t f = 0; f < heights.size(); ++f) {
+    if (heights[f] == Sign::negative) continue;
+    const auto& loop = y.face(f);
+    bool interior = true;
+    for (std::size_t k = 0; k < loop.size() && interior; ++k) {
+      interior = edge_side<Policy>(y, f, y.p(loop[k]), y.p(loop[(k + 1) % loop.size()]), v) == Sign::negative;
+    }
+    if (!interior) continue;
+    if (y.internal[f] || (!touching && !within<Policy>(face_height(y, f, v), tolerance))) return std::nullopt;
+    return Located{Feature::Kind::face, f, false, touching};
+  }
+  return std::nullopt;  // only under Float, whose rounded signs may contradict each other
+}
+
+// Step 1 of the header: where vertex v of X stands against Y, if it is a contact.
+template <NumberPolicy Policy>
+std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double tolerance) {
+  std::vector<Sign> heights(y.internal.size());
+  bool inside = true, touching = true;
+  for (std::uint32_t f = 0; f < heights.size(); ++f) {
+    const auto& loop = y.face(f);
+    heights[f] = orient3d<Policy>(y.p(loop[0]), y.p(loop[1]), y.p(loop[2]), v);
+    inside &= heights[f] == Sign::negative;
+    touching &= heights[f] != Sign::positive;
+  }
+  if (inside) return shortest_exit_face<Policy>(v, y);
+  if (!touching) {
+    if (!(tolerance > 0.0)) return std::nullopt;
+    // v's distance to Y is at least its height over any face: a cheap exact rejection.
+    for (std::uint32_t f = 0; f < heights.size(); ++f) {
+      if (heights[f] == Sign::positive && !within<Policy>(face_height(y, f, v), tolerance)) return std::nullopt;
+    }
+  }
+  return closest_feature<Policy>(v, y, heights, touching, tolerance);
+}
+
+// The tangent cone of a block at a contact point, by generators: rays (from, to) and lines
+// (from, to), the directions to - from (lines in both senses).
+struct Cone {
+  std::vector<std::pair<Point3, Point3>> rays;
+  std::vector<std::pair<Point3, Point3>> lines;
+};
+
+Cone vertex_cone(const Topology& t, std::uint32_t w) {
+  Cone cone;
+  for (std::uint32_t u : t.neighbours[w]) cone.rays.emplace_back(t.p(w), t.p(u));
+  return cone;
+}
+
+Cone edge_cone(const Topology& t, std::uint32_t e) {
+  const auto [i, j] = t.poly->edges()[e];
+  Cone cone;
+  cone.lines.emplace_back(t.p(i), t.p(j));
+  for (std::uint32_t f : t.edge_faces[e]) cone.rays.emplace_back(t.p(i), t.p(t.off_edge(f, i, j)));
+  return cone;
+}
+
+// The no-overlap check of §2.2.1 for a candidate plane oriented X -> Y: X's cone on its
+// non-positive side, Y's on its non-negative side.
+template <NumberPolicy Policy>
+bool separates(const Plane& plane, const Cone& x, const Cone& y) {
+  const auto side = [&](const std::pair<Point3, Point3>& r) {
+    const Sign s = triple_sign<Policy>(plane.p0, plane.p1, plane.q0, plane.q1, r.first, r.second);
+    return plane.sigma > 0 ? s : -s;
+  };
+  return std::all_of(x.rays.begin(), x.rays.end(), [&](const auto& r) { return side(r) != Sign::positive; }) &&
+         std::all_of(y.rays.begin(), y.rays.end(), [&](const auto& r) { return side(r) != Sign::negative; }) &&
+         std::all_of(y.lines.begin(), y.lines.end(), [&](const auto& r) { return side(r) == Sign::zero; });
+}
+
+// The separation distance of eq. 4 for a candidate plane, (p - v) . n / |n|, with p = y0 (a
+// vertex of Y) or p = the projection of v on Y's edge [y0, y1]:
+//   vertex: N = n . (y0 - v),                               D = |n|^2;
+//   edge:   N = |d|^2 n . (y0 - v) + ((v - y0) . d)(d . n),  D = |d|^4 |n|^2,  d = y1 - y0.
+auto candidate_distance(const Plane& plane, Point3 v, Point3 y0, Point3 y1, bool edge) {
+  return Distance{[=](auto as) {
+                    using T = typename decltype(as)::type;
+                    const Vec<T> n = plane_normal<T>(plane);
+                    const T base = dot(n, sub<T>(v, y0));
+                    if (!edge) return base;
+                    const Vec<T> d = sub<T>(y0, y1);
+                    return T(T(dot(d, d) * base) + T(dot(sub<T>(y0, v), d) * dot(d, n)));
+                  },
+                  [=](auto as) {
+                    using T = typename decltype(as)::type;
+                    const Vec<T> n = plane_normal<T>(plane);
+                    const T nn = dot(n, n);
+                    if (!edge) return nn;
+                    const Vec<T> d = sub<T>(y0, y1);
+                    const T dd = dot(d, d);
+                    return T(T(dd * dd) * nn);
+                  }};
+}
+
+// Step 3 of the header: the candidate planes of a vertex-edge or vertex-vertex contact that pass
+// the no-overlap check, in tie-break order, and the shortest exit among them.
+template <NumberPolicy Policy>
+void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topology& y, const Located& at) {
+  const bool edge = at.kind == Feature::Kind::edge;
+  const Cone x_cone = vertex_cone(x, v);
+  const Cone y_cone = edge ? edge_cone(y, at.index) : vertex_cone(y, at.index);
+  std::vector<std::uint32_t> y_faces;
+  std::vector<std::pair<Point3, Point3>> y_edges;
+  if (edge) {
+    y_faces = {y.edge_faces[at.index][0], y.edge_faces[at.index][1]};
+    y_edges = y_cone.lines;
+  } else {
+    y_faces = y.vertex_faces[at.index];
+    y_edges = y_cone.rays;
+  }
+  std::vector<Plane> planes;
+  for (std::uint32_t f : y_faces) {
+    if (!y.internal[f]) planes.push_back(face_plane(y, f, -1));
+  }
+  for (std::uint32_t f : x.vertex_faces[v]) {
+    if (!x.internal[f]) planes.push_back(face_plane(x, f, 1));
+  }
+  for (std::uint32_t u : x.neighbours[v]) {
+    for (const auto& [c, e] : y_edges) {
+      if (parallel<Policy>(x.p(v), x.p(u), c, e)) continue;
+      for (int sigma : {1, -1}) planes.push_back({x.p(v), x.p(u), c, e, sigma});
+    }
+  }
+  for (const Plane& plane : planes) {
+    if (separates<Policy>(plane, x_cone, y_cone)) d.candidates.push_back(plane);
+  }
+  const auto distance = [&](const Plane& plane) { return candidate_distance(plane, d.x0, d.y0, d.y1, edge); };
+  const Plane* best = nullptr;
+  for (const Plane& plane : d.candidates) {
+    if (!best || compare_distances<Policy>(distance(plane), distance(*best)) == Sign::positive) best = &plane;
+  }
+  d.line_normal = best == nullptr;
+  if (best) {
+    d.plane = *best;
+    d.gap_sign = d.touching ? Sign::zero : decide<Policy>(distance(*best).numerator);
+  } else {
+    d.gap_sign = Sign::positive;
+  }
+}
+
+// Steps 1 and 3 for vertex v of X against Y.
+template <NumberPolicy Policy>
+std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool x_is_cp, const Topology& y,
+                                        double tolerance) {
+  const std::optional<Located> at = locate_vertex<Policy>(x.p(v), y, tolerance);
+  if (!at) return std::nullopt;
+  Decision d{};
+  d.x_is_cp = x_is_cp;
+  d.x_feature = {Feature::Kind::vertex, v, x.part};
+  d.y_feature = {at->kind, at->index, y.part};
+  d.x0 = d.x1 = x.p(v);
+  d.touching = at->touching;
+  switch (at->kind) {
+    case Feature::Kind::face:
+      d.type = ConstraintType::vertex_face;
+      d.plane = face_plane(y, at->index, -1);
+      d.y0 = d.y1 = y.p(y.face(at->index)[0]);
+      d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
+      return d;
+    case Feature::Kind::edge:
+      d.type = ConstraintType::vertex_edge;
+      d.y0 = y.p(y.poly->edges()[at->index].first);
+      d.y1 = y.p(y.poly->edges()[at->index].second);
+      break;
+    case Feature::Kind::vertex:
+      d.type = ConstraintType::vertex_vertex;
+      d.y0 = d.y1 = y.p(at->index);
+      break;
+  }
+  choose_plane<Policy>(d, x, v, y, *at);
+  // A touch with no separating candidate: the blocks overlap around the touching point (a
+  // corner of one on a coincident corner or edge of the other, as with identical blocks), or
+  // the only separating plane is an internal face. No plane to push along: no constraint.
+  if (d.line_normal && d.touching) return std::nullopt;
+  return d;
+}
+
+// The common non-zero sign of triple(a, b, c, d, origin, x) over the given points, or zero
+// when both signs occur or all are zero.
+template <NumberPolicy Policy>
+Sign common_side(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& origin,
+                 std::initializer_list<Point3> points) {
+  Sign side = Sign::zero;
+  for (const Point3& p : points) {
+    const Sign s = triple_sign<Policy>(a, b, c, d, origin, p);
+    if (s == Sign::zero) continue;
+    if (side != Sign::zero && s != side) return Sign::zero;
+    side = s;
+  }
+  return side;
+}
+
+// Does the segment [a, b] meet the interior of part `t`? With h_f(a), h_f(b) the (scaled) heights
+// of the endpoints over face f, the segment's points a + s (b - a) strictly below f's plane form
+// an interval of s: s > h_f(a) / (h_f(a) - h_f(b)) when h_f(a) >= 0 > h_f(b), s < the same ratio
+// when h_f(a) < 0 <= h_f(b), empty when neither is negative. The open intervals meet when every
+// lower bound (face f) is below every upper bound (face g), i.e. (with the positive
+// denominators h_f(a) - h_f(b) and h_g(b) - h_g(a)) when h_f(a) h_g(b) - h_g(a) h_f(b) < 0,
+// degree 6.
+template <NumberPolicy Policy>
+bool segment_meets(const Topology& t, const Point3& a, const Point3& b) {
+  const auto height = [&](std::uint32_t f, const Point3& x) {
+    const auto& loop = t.face(f);
+    const Point3 f0 = t.p(loop[0]), f1 = t.p(loop[1]), f2 = t.p(loop[2]);
+    return [=](auto as) {
+      using T = typename decltype(as)::type;
+      return dot(cross(sub<T>(f0, f1), sub<T>(f0, f2)), sub<T>(f0, x));
+    };
+  };
+  std::vector<std::uint32_t> lower, upper;
+  for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
+    const auto& loop = t.face(f);
+    const Sign ha = orient3d<Policy>(t.p(loop[0]), t.p(loop[1]), t.p(loop[2]), a);
+    const Sign hb = orient3d<Policy>(t.p(loop[0]), t.p(loop[1]), t.p(loop[2]), b);
+    if (ha != Sign::negative && hb != Sign::negative) return false;
+    if (ha != Sign::negative) lower.push_back(f);
+    if (hb != Sign::negative) upper.push_back(f);
+  }
+  for (std::uint32_t f : lower) {
+    for (std::uint32_t g : upper) {
+      const auto fa = height(f, a), fb = height(f, b), ga = height(g, a), gb = height(g, b);
+      const Sign order = decide<Policy>([&](auto as) {
+        using T = typename decltype(as)::type;
+        return T(fa(as) * gb(as)) - T(ga(as) * fb(as));
+      });
+      if (order != Sign::negative) return false;
+    }
+  }
+  return true;
+}
+
+// Step 2 of the header: edge e = [a, b] of X (cp) against edge g = [c, d] of Y (tp).
+template <NumberPolicy Policy>
+std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const Topology& y, std::uint32_t g,
+                                      double tolerance) {
+  const auto [ia, ib] = x.poly->edges()[e];
+  const auto [ic, id] = y.poly->edges()[g];
+  const Point3 a = x.p(ia), b = x.p(ib), c = y.p(ic), d = y.p(id);
+  if (parallel<Policy>(a, b, c, d)) return std::nullopt;
+  // s = S / N2 on e, t = U / N2 on g (eq. 2-3): S = ((c - a) x (d - c)) . n,
+  // U = ((c - a) x (b - a)) . n, N2 = |n|^2, n = (b - a) x (d - c).
+  const auto n2 = [&](auto as) {
+    using T = typename decltype(as)::type;
+    const Vec<T> n = cross(sub<T>(a, b), sub<T>(c, d));
+    return dot(n, n);
+  };
+  const auto along = [&](const Point3& p0, const Point3& p1) {
+    return [&, p0, p1](auto as) {
+      using T = typename decltype(as)::type;
+      return dot(cross(sub<T>(a, c), sub<T>(p0, p1)), cross(sub<T>(a, b), sub<T>(c, d)));
+    };
+  };
+  const auto s = along(c, d), u = along(a, b);
+  const auto interior = [&](const auto& q) {
+    return decide<Policy>(q) == Sign::positive && decide<Policy>([&](auto as) {
+             using T = typename decltype(as)::type;
+             return T(n2(as) - q(as));
+           }) == Sign::positive;
+  };
+  if (!interior(s) || !interior(u)) return std::nullopt;
+  const auto [xf0, xf1] = x.edge_faces[e];
+  const auto [yf0, yf1] = y.edge_faces[g];
+  const Sign side_x = common_side<Policy>(a, b, c, d, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
+  const Sign side_y = common_side<Policy>(a, b, c, d, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
+  if (side_x == Sign::zero || side_y != -side_x) return std::nullopt;
+  const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1};
+  const auto gap = [=](auto as) {
+    using T = typename decltype(as)::type;
+    return dot(plane_normal<T>(plane), sub<T>(a, c));
+  };
+  const Sign gap_sign = decide<Policy>(gap);
+  if (gap_sign == Sign::positive && !within<Policy>(Distance{gap, n2}, tolerance)) return std::nullopt;
+  if (gap_sign == Sign::negative && (!segment_meets<Policy>(y, a, b) || !segment_meets<Policy>(x, c, d))) {
+    return std::nullopt;
+  }
+  Decision out{};
+  out.type = ConstraintType::edge_edge;
+  out.x_is_cp = true;
+  out.x_feature = {Feature::Kind::edge, e, x.part};
+  out.y_feature = {Feature::Kind::edge, g, y.part};
+  out.x0 = a;
+  out.x1 = b;
+  out.y0 = c;
+  out.y1 = d;
+  out.plane = plane;
+  out.touching = gap_sign == Sign::zero;
+  out.gap_sign = gap_sign;
+  return out;
+}
+
+template <NumberPolicy Policy>
+void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::vector<Decision>& out) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> vertex_pairs;  // (cp vertex, tp vertex)
+  for (std::uint32_t v = 0; v < cp.poly->size(); ++v) {
+    if (auto d = vertex_decision<Policy>(cp, v, true, tp, tolerance)) {
+      if (d->type == ConstraintType::vertex_vertex) vertex_pairs.emplace(v, d->y_feature.index);
+      out.push_back(std::move(*d));
+    }
+  }
+  for (std::uint32_t w = 0; w < tp.poly->size(); ++w) {
+    if (auto d = vertex_decision<Policy>(tp, w, false, cp, tolerance)) {
+      if (d->type == ConstraintType::vertex_vertex && vertex_pairs.count({d->y_feature.index, w})) continue;
+      out.push_back(std::move(*d));
+    }
+  }
+  for (std::uint32_t e = 0; e < cp.poly->edges().size(); ++e) {
+    for (std::uint32_t g = 0; g < tp.poly->edges().size(); ++g) {
+      if (auto d = edge_decision<Policy>(cp, e, tp, g, tolerance)) out.push_back(std::move(*d));
+    }
+  }
+}
+
+// ---- the constructions ------------------------------------------------------------------------
+
+template <class FT>
+struct Frame {
+  using Ops = detail::NumberOps<FT>;
+  Point3 origin;
+
+  Vec<FT> at(const Point3& p) const {
+    return {FT(Ops::from(p.x) - Ops::from(origin.x)), FT(Ops::from(p.y) - Ops::from(origin.y)),
+            FT(Ops::from(p.z) - Ops::from(origin.z))};
+  }
+  Point3 back(const Vec<FT>& v) const {
+    return {Ops::to_double(FT(v.x + Ops::from(origin.x))), Ops::to_double(FT(v.y + Ops::from(origin.y))),
+            Ops::to_double(FT(v.z + Ops::from(origin.z)))};
+  }
+};
+
+template <class FT>
+Vec<FT> minus(const Vec<FT>& a, const Vec<FT>& b) {
+  return {FT(a.x - b.x), FT(a.y - b.y), FT(a.z - b.z)};
+}
+
+// a + (k / m) d
+template <class FT>
+Vec<FT> advance_along(const Vec<FT>& a, const FT& k, const FT& m, const Vec<FT>& d) {
+  const FT r = k / m;
+  return {FT(a.x + FT(r * d.x)), FT(a.y + FT(r * d.y)), FT(a.z + FT(r * d.z))};
+}
+
+template <class FT>
+Point3 unit(const Vec<FT>& v) {
+  const FT length = detail::NumberOps<FT>::sqrt(dot(v, v));
+  return {detail::NumberOps<FT>::to_double(FT(v.x / length)), detail::NumberOps<FT>::to_double(FT(v.y / length)),
+          detail::NumberOps<FT>::to_double(FT(v.z / length))};
+}
+
+template <class FT>
+Vec<FT> frame_normal(const Frame<FT>& frame, const Plane& plane) {
+  const Vec<FT> n = cross(minus(frame.at(plane.p1), frame.at(plane.p0)), minus(frame.at(plane.q1), frame.at(plane.q0)));
+  if (plane.sigma > 0) return n;
+  return {FT(-n.x), FT(-n.y), FT(-n.z)};
+}
+
+Point3 negate(const Point3& p) { return {-p.x, -p.y, -p.z}; }
+
+// Tangent basis of §2.3: t1 = the unit projection onto the plane of the axis least aligned with
+// the normal, t2 = n x t1.
+void set_tangents(ContactConstraint& c) {
+  const Point3& n = c.normal;
+  const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  const Point3 axis = ax <= ay && ax <= az ? Point3{1, 0, 0} : ay <= az ? Point3{0, 1, 0} : Point3{0, 0, 1};
+  const double k = axis.x * n.x + axis.y * n.y + axis.z * n.z;
+  Point3 t{axis.x - k * n.x, axis.y - k * n.y, axis.z - k * n.z};
+  const double length = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+  t = {t.x / length, t.y / length, t.z / length};
+  c.tangent1 = t;
+  c.tangent2 = {n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x};
+}
+
+template <class FT>
+ContactConstraint construct(const Decision& d, const Frame<FT>& frame) {
+  const Vec<FT> x0 = frame.at(d.x0), x1 = frame.at(d.x1), y0 = frame.at(d.y0), y1 = frame.at(d.y1);
+  const Vec<FT> n = frame_normal(frame, d.plane);
+  Vec<FT> px = x0, py = y0;
+  switch (d.type) {
+    case ConstraintType::vertex_face:  // eq. 1: the projection of the vertex on the face's plane
+      py = advance_along(x0, dot(minus(y0, x0), n), dot(n, n), n);
+      break;
+    case ConstraintType::edge_edge: {  // eq. 2-3: the closest points of the two lines
+      const Vec<FT> de = minus(x1, x0), dg = minus(y1, y0), m = cross(de, dg);
+      const FT mm = dot(m, m);
+      px = advance_along(x0, dot(cross(minus(y0, x0), dg), m), mm, de);
+      py = advance_along(y0, dot(cross(minus(y0, x0), de), m), mm, dg);
+      break;
+    }
+    case ConstraintType::vertex_edge: {  // §2.1 method (a): the projection on the edge
+      const Vec<FT> dg = minus(y1, y0);
+      py = advance_along(y0, dot(minus(x0, y0), dg), dot(dg, dg), dg);
+      break;
+    }
+    case ConstraintType::vertex_vertex: break;
+  }
+  if (d.touching) py = px;
+  ContactConstraint c;
+  c.type = d.type;
+  const Point3 normal = d.line_normal ? unit(minus(py, px)) : unit(n);
+  // Contact points that are input vertices are returned as given, not through the frame.
+  const bool x_vertex = d.type != ConstraintType::edge_edge;
+  const Point3 point_x = x_vertex ? d.x0 : frame.back(px);
+  const Point3 point_y = d.touching ? point_x : d.type == ConstraintType::vertex_vertex ? d.y0 : frame.back(py);
+  if (d.gap_sign != Sign::zero) {
+    const Vec<FT> gap = minus(py, px);
+    const FT along = d.line_normal ? detail::NumberOps<FT>::sqrt(dot(gap, gap))
+                                   : FT(dot(gap, n) / detail::NumberOps<FT>::sqrt(dot(n, n)));
+    c.gap = detail::NumberOps<FT>::to_double(along);
+  }
+  c.entering = d.x_is_cp ? BlockRole::cp : BlockRole::tp;
+  c.cp_feature = d.x_is_cp ? d.x_feature : d.y_feature;
+  c.tp_feature = d.x_is_cp ? d.y_feature : d.x_feature;
+  c.point_cp = d.x_is_cp ? point_x : point_y;
+  c.point_tp = d.x_is_cp ? point_y : point_x;
+  c.normal = d.x_is_cp ? normal : negate(normal);
+  for (const Plane& plane : d.candidates) {
+    const Point3 u = unit(frame_normal(frame, plane));
+    c.candidate_normals.push_back(d.x_is_cp ? u : negate(u));
+  }
+  set_tangents(c);
+  return c;
+}
+
+template <NumberPolicy Policy>
+std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {
+  std::vector<Topology> out;
+  for (std::uint32_t i = 0; i < parts.size(); ++i) out.push_back(make_topology(parts[i], i));
+  mark_internal_faces<Policy>(out);
+  return out;
+}
+
+}  // namespace
+
+template <NumberPolicy Policy>
+std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhedron> cp_parts,
+                                                   std::span<const ConvexPolyhedron> tp_parts, double tolerance) {
+  if (!std::isfinite(tolerance) || tolerance < 0.0) {
+    throw std::invalid_argument("contact_constraints: the tolerance must be finite and >= 0 (metres), got " +
+                                std::to_string(tolerance));
+  }
+  std::vector<Decision> decisions;
+  {
+    const PredicateScope scope;
+    const std::vector<Topology> cp = topologies<Policy>(cp_parts), tp = topologies<Policy>(tp_parts);
+    for (const Topology& a : cp) {
+      for (const Topology& b : tp) decide_pair<Policy>(a, b, tolerance, decisions);
+    }
+  }
+  std::vector<ContactConstraint> out;
+  if (decisions.empty()) return out;
+  using FT = detail::ConstructionType<Policy>;
+  const Frame<FT> frame{cp_parts.front().vertices().front()};
+  for (const Decision& d : decisions) out.push_back(construct(d, frame));
+  return out;
+}
+
+template <NumberPolicy Policy>
+std::vector<ContactConstraint> contact_constraints(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp,
+                                                   double tolerance) {
+  return contact_constraints<Policy>(std::span<const ConvexPolyhedron>(&cp, 1),
+                                     std::span<const ConvexPolyhedron>(&tp, 1), tolerance);
+}
+
+std::optional<Point3> sliding_direction(const Point3& normal, const Point3& relative, double tolerance) {
+  const double along = relative.x * normal.x + relative.y * normal.y + relative.z * normal.z;
+  const Point3 t{relative.x - along * normal.x, relative.y - along * normal.y, relative.z - along * normal.z};
+  const double length = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+  if (!(length > tolerance) || length == 0.0) return std::nullopt;
+  return Point3{t.x / length, t.y / length, t.z / length};
+}
+
+#define ROCKCONTACT_INSTANTIATE(P)                                                                              \
+  template std::vector<ContactConstraint> contact_constraints<P>(const ConvexPolyhedron&, const ConvexPolyhedron&, \
+                                                                 double);                                       \
+  template std::vector<ContactConstraint> contact_constraints<P>(                                                \
+      std::span<const ConvexPolyhedron>, std::span<const ConvexPolyhedron>, double);
+ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
+#undef ROCKCONTACT_INSTANTIATE
+
+}  // namespace rockcontact::kernel
