@@ -75,9 +75,18 @@
 // Known limits: a vertex touching the other block (on its boundary) where the two blocks
 // overlap around it, so that no candidate plane passes the no-overlap check (a corner on a
 // coincident corner of an overlapping block; identical blocks), gives no constraint, as there is
-// no plane to push along: two identical blocks yield none at all. An edge where two parts meet flush (inside a flat face of the union) still
-// counts as an edge, so a face resting across it gets extra corner constraints there (with the
-// right normal and gap).
+// no plane to push along: two identical blocks yield none at all. An edge where two parts meet
+// flush (inside a flat face of the union) still counts as an edge of each part, so a face
+// resting across it gets extra corner constraints there, and a vertex resting on it one
+// constraint per part (each with the right normal and gap: more stiffness, not a wrong force).
+//
+// For the implicit DDA (seed 001 §3-§5): a constraint is what §4.2 stores per contact. Its
+// normal spring acts on gap = (point_tp - point_cp) . normal, linear in the two blocks'
+// displacements through the points (T_i(x) of eq. 11) with the normal fixed over the step (§3.1);
+// (type, cp_feature, tp_feature) identifies the contact across steps, to inherit its mode
+// (§2.4 method 2); the features and points are what the revision of §5.1 (eq. 41-45) needs
+// (the vertex and face of a vertex-face, the two edges of an edge-edge); candidate_normals lets
+// the open-close iteration redo the shortest exit with updated points (§4.3).
 //
 // Robustness: every decision above (the location of a vertex, interior parameters, supporting
 // sides, the tolerance, the no-overlap check, the shortest-exit comparison) is the exact sign of
