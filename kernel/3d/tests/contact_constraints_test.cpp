@@ -540,3 +540,41 @@ BOOST_AUTO_TEST_CASE(contact3d_reference_pairs) {
                      << overlap_without << " overlapping pairs without a constraint; Float's feature list differs on "
                      << float_differs << " of 132 pairs");
 }
+
+// Rigid-motion invariance: the cyclic permutation (x, y, z) -> (y, z, x) is an exact rotation
+// (it keeps every coordinate and the faces' orientation), so every contact3d pair rotated must
+// give the same constraints: the same types, features and order exactly (the decisions are
+// exact, and ties are broken by indices, never by coordinates), normals and points rotated,
+// gaps equal. The constructed numbers may differ by the different order of the rounded sums:
+// 32 ulps of the scale for gaps and points (as in contact3d_reference_pairs) plus 4 ulps of the
+// largest coordinate for points (which are rounded back to the input's position), and 8 ulps
+// for unit normals.
+BOOST_AUTO_TEST_CASE(contact3d_rotation_invariance) {
+  const auto rotate = [](const ConvexPolyhedron& p) {
+    std::vector<Point3> vertices;
+    for (const Point3& v : p.vertices()) vertices.push_back({v.y, v.z, v.x});
+    return ConvexPolyhedron::make(p.name() + " rotated", std::move(vertices),
+                                  std::vector<ConvexPolyhedron::Face>(p.faces().begin(), p.faces().end()));
+  };
+  const auto turn = [](const Point3& v) { return Point3{v.y, v.z, v.x}; };
+  for (const auto& pair : rockcontact::testing::contact3d_pairs()) {
+    BOOST_TEST_CONTEXT("pair " << pair.id) {
+      const double scale = number(pair.expected.at("scale"));
+      const double slack = 32 * 0x1p-52 * scale, point_slack = slack + 4 * 0x1p-52 * max_coordinate(pair.cp, pair.tp);
+      const auto cs = rk::contact_constraints<rk::Filtered>(pair.cp, pair.tp);
+      const auto rs = rk::contact_constraints<rk::Filtered>(rotate(pair.cp), rotate(pair.tp));
+      BOOST_TEST_REQUIRE(cs.size() == rs.size());
+      for (std::size_t i = 0; i < cs.size(); ++i) {
+        BOOST_TEST((cs[i].type == rs[i].type));
+        BOOST_TEST((cs[i].cp_feature == rs[i].cp_feature));
+        BOOST_TEST((cs[i].tp_feature == rs[i].tp_feature));
+        BOOST_TEST((cs[i].entering == rs[i].entering));
+        BOOST_TEST(std::fabs(cs[i].gap - rs[i].gap) <= slack);
+        BOOST_TEST(norm(turn(cs[i].normal) - rs[i].normal) <= 8 * 0x1p-52);
+        BOOST_TEST(norm(turn(cs[i].point_cp) - rs[i].point_cp) <= point_slack);
+        BOOST_TEST(norm(turn(cs[i].point_tp) - rs[i].point_tp) <= point_slack);
+        BOOST_TEST(cs[i].candidate_normals.size() == rs[i].candidate_normals.size());
+      }
+    }
+  }
+}
