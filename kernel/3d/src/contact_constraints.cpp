@@ -568,7 +568,6 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   const auto [ia, ib] = x.poly->edges()[e];
   const auto [ic, id] = y.poly->edges()[g];
   const Point3 a = x.p(ia), b = x.p(ib), c = y.p(ic), d = y.p(id);
-  if (parallel<Policy>(a, b, c, d)) return std::nullopt;
   // s = S / N2 on e, t = U / N2 on g (eq. 2-3): S = ((c - a) x (d - c)) . n,
   // U = ((c - a) x (b - a)) . n, N2 = |n|^2, n = (b - a) x (d - c).
   const auto n2 = [&](auto as) {
@@ -589,19 +588,22 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
              return T(n2(as) - q(as));
            }) == Sign::positive;
   };
-  if (!interior(s) || !interior(u)) return std::nullopt;
+  // Cheapest first: the supporting sides and the gap's sign are triple products (static filter).
+  // Parallel edges (n = 0) make every triple product zero, so side_x == 0 rejects them too.
   const auto [xf0, xf1] = x.edge_faces[e];
   const auto [yf0, yf1] = y.edge_faces[g];
   const Sign side_x = common_side<Policy>(a, b, c, d, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
+  if (side_x == Sign::zero) return std::nullopt;
   const Sign side_y = common_side<Policy>(a, b, c, d, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
-  if (side_x == Sign::zero || side_y != -side_x) return std::nullopt;
+  if (side_y != -side_x) return std::nullopt;
   const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1, Plane::Source::edge_pair, e, g};
+  const Sign gap_sign = -side_x * triple_sign<Policy>(a, b, c, d, a, c);
   const auto gap = [=](auto as) {
     using T = typename decltype(as)::type;
     return dot(plane_normal<T>(plane), sub<T>(a, c));
   };
-  const Sign gap_sign = decide<Policy>(gap);
   if (gap_sign == Sign::positive && !within<Policy>(Distance{gap, n2}, tolerance)) return std::nullopt;
+  if (!interior(s) || !interior(u)) return std::nullopt;
   if (gap_sign == Sign::negative && (!segment_meets<Policy>(y, a, b) || !segment_meets<Policy>(x, c, d))) {
     return std::nullopt;
   }
