@@ -54,7 +54,9 @@ T dot(const Vec<T>& u, const Vec<T>& v) {
 // The sign of a formula f(As<T>) of input doubles: in double under Float; under the staged
 // policies by the interval stage, then CGAL::Mpzf (core/detail/staged_sign.hpp). The formulas
 // here (degree 2 to 8 dot and cross products) have no double filter of their own: the interval
-// stage is their filter. Checked also evaluates exactly and compares.
+// stage is their filter, so each call counts as an interval fallback of PredicateKind::triple
+// (the triple products themselves go through predicates.hpp and its static filter, and are
+// tested first where they can reject). Checked also evaluates exactly and compares.
 template <NumberPolicy Policy, class Formula>
 Sign decide(const Formula& f) {
   if constexpr (Policy::kind == PolicyKind::float_) {

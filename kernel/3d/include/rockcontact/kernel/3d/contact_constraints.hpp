@@ -86,17 +86,19 @@
 // displacements through the points (T_i(x) of eq. 11) with the normal fixed over the step (§3.1);
 // (type, cp_feature, tp_feature) identifies the contact across steps, to inherit its mode
 // (§2.4 method 2); the features and points are what the revision of §5.1 (eq. 41-45) needs
-// (the vertex and face of a vertex-face, the two edges of an edge-edge); `plane` and `candidates` let
-// the open-close iteration redo the shortest exit with updated points (§4.3).
+// (the vertex and face of a vertex-face, the two edges of an edge-edge); `plane` and
+// `candidates` let the open-close iteration redo the shortest exit with updated points (§4.3).
 //
 // Robustness: every decision above (the location of a vertex, interior parameters, supporting
 // sides, the tolerance, the no-overlap check, the shortest-exit comparison) is the exact sign of
 // a polynomial of input coordinates and the tolerance, under Filtered, Exact and Checked
-// (interval arithmetic, then CGAL::Mpzf); a touch with gap exactly 0 reports gap 0 exactly and
-// equal contact points where the two coincide. Constructions follow the decisions: under Float
-// and Filtered in double after translating the pair to a local origin (a vertex of cp), so their
-// error is a few ulps of the pair's size, not of its distance from the origin; under Exact in
-// exact rationals (square roots for unit normals and distances in 256-bit MPFR), rounded once.
+// (triple products through predicates.hpp's static filter, the other formulas, of degree 2 to
+// 8, through interval arithmetic; then CGAL::Mpzf); a touch reports gap exactly 0 and equal
+// contact points. Constructions follow the decisions: under Float and Filtered in double after
+// translating the pair to a local origin (a vertex of cp), so their error is a few ulps of the
+// pair's size, not of its distance from the origin; under Exact in exact rationals (square
+// roots for unit normals and distances in 256-bit MPFR), rounded once. Contact points that are
+// input vertices are returned exactly as given.
 // Float decides in double too, as the naive baseline.
 
 #include <cstdint>
