@@ -54,7 +54,9 @@ T dot(const Vec<T>& u, const Vec<T>& v) {
 // The sign of a formula f(As<T>) of input doubles: in double under Float; under the staged
 // policies by the interval stage, then CGAL::Mpzf (core/detail/staged_sign.hpp). The formulas
 // here (degree 2 to 8 dot and cross products) have no double filter of their own: the interval
-// stage is their filter. Checked also evaluates exactly and compares.
+// stage is their filter, so each call counts as an interval fallback of PredicateKind::triple
+// (the triple products themselves go through predicates.hpp and its static filter, and are
+// tested first where they can reject). Checked also evaluates exactly and compares.
 template <NumberPolicy Policy, class Formula>
 Sign decide(const Formula& f) {
   if constexpr (Policy::kind == PolicyKind::float_) {
@@ -121,6 +123,7 @@ struct Topology {
   const ConvexPolyhedron* poly;
   std::uint32_t part;
   std::vector<std::vector<std::uint32_t>> neighbours;    // per vertex
+  std::vector<std::vector<std::uint32_t>> vertex_edges;  // per vertex, the edges to its neighbours
   std::vector<std::vector<std::uint32_t>> vertex_faces;  // per vertex
   // Per edge (first < second): [0] the face whose loop runs first -> second, [1] the other.
   std::vector<std::array<std::uint32_t, 2>> edge_faces;
@@ -138,8 +141,9 @@ struct Topology {
 };
 
 Topology make_topology(const ConvexPolyhedron& poly, std::uint32_t part) {
-  Topology t{&poly, part, {}, {}, {}, std::vector<bool>(poly.faces().size(), false)};
+  Topology t{&poly, part, {}, {}, {}, {}, std::vector<bool>(poly.faces().size(), false)};
   t.neighbours.resize(poly.size());
+  t.vertex_edges.resize(poly.size());
   t.vertex_faces.resize(poly.size());
   std::map<ConvexPolyhedron::Edge, std::uint32_t> edge_index;
   for (std::uint32_t e = 0; e < poly.edges().size(); ++e) {
@@ -147,6 +151,8 @@ Topology make_topology(const ConvexPolyhedron& poly, std::uint32_t part) {
     edge_index[poly.edges()[e]] = e;
     t.neighbours[i].push_back(j);
     t.neighbours[j].push_back(i);
+    t.vertex_edges[i].push_back(e);
+    t.vertex_edges[j].push_back(e);
   }
   t.edge_faces.resize(poly.edges().size());
   for (std::uint32_t f = 0; f < poly.faces().size(); ++f) {
@@ -187,10 +193,14 @@ void mark_internal_faces(std::vector<Topology>& parts) {
 // ---- the decisions ----------------------------------------------------------------------------
 
 // A plane by its implicit normal sigma (p1 - p0) x (q1 - q0), oriented from the block X whose
-// vertex or edge is located towards the other block Y.
+// vertex or edge is located towards the other block Y, and where it comes from: a face of X or
+// of Y, or an edge of each (x_index, y_index).
 struct Plane {
+  enum class Source : std::uint8_t { x_face, y_face, edge_pair };
   Point3 p0, p1, q0, q1;
   int sigma = 1;
+  Source source = Source::x_face;
+  std::uint32_t x_index = 0, y_index = 0;
 };
 
 template <class T>
@@ -200,9 +210,11 @@ Vec<T> plane_normal(const Plane& plane) {
   return {T(0) - n.x, T(0) - n.y, T(0) - n.z};
 }
 
-Plane face_plane(const Topology& t, std::uint32_t f, int sigma) {
+// The plane of face f of X (outward normal, X -> Y) or of Y (inward normal).
+Plane face_plane(const Topology& t, std::uint32_t f, Plane::Source source) {
   const auto& loop = t.face(f);
-  return {t.p(loop[0]), t.p(loop[1]), t.p(loop[0]), t.p(loop[2]), sigma};
+  if (source == Plane::Source::x_face) return {t.p(loop[0]), t.p(loop[1]), t.p(loop[0]), t.p(loop[2]), 1, source, f, 0};
+  return {t.p(loop[0]), t.p(loop[1]), t.p(loop[0]), t.p(loop[2]), -1, source, 0, f};
 }
 
 // What a located vertex, or an edge pair, touches; enough to construct the constraint.
@@ -422,26 +434,25 @@ void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topolog
   const bool edge = at.kind == Feature::Kind::edge;
   const Cone x_cone = vertex_cone(x, v);
   const Cone y_cone = edge ? edge_cone(y, at.index) : vertex_cone(y, at.index);
-  std::vector<std::uint32_t> y_faces;
-  std::vector<std::pair<Point3, Point3>> y_edges;
-  if (edge) {
-    y_faces = {y.edge_faces[at.index][0], y.edge_faces[at.index][1]};
-    y_edges = y_cone.lines;
-  } else {
-    y_faces = y.vertex_faces[at.index];
-    y_edges = y_cone.rays;
-  }
+  const std::vector<std::uint32_t> y_faces = edge ? std::vector<std::uint32_t>{y.edge_faces[at.index][0],
+                                                                                   y.edge_faces[at.index][1]}
+                                                  : y.vertex_faces[at.index];
+  const std::vector<std::uint32_t> y_edges = edge ? std::vector<std::uint32_t>{at.index} : y.vertex_edges[at.index];
   std::vector<Plane> planes;
   for (std::uint32_t f : y_faces) {
-    if (!y.internal[f]) planes.push_back(face_plane(y, f, -1));
+    if (!y.internal[f]) planes.push_back(face_plane(y, f, Plane::Source::y_face));
   }
   for (std::uint32_t f : x.vertex_faces[v]) {
-    if (!x.internal[f]) planes.push_back(face_plane(x, f, 1));
+    if (!x.internal[f]) planes.push_back(face_plane(x, f, Plane::Source::x_face));
   }
-  for (std::uint32_t u : x.neighbours[v]) {
-    for (const auto& [c, e] : y_edges) {
-      if (parallel<Policy>(x.p(v), x.p(u), c, e)) continue;
-      for (int sigma : {1, -1}) planes.push_back({x.p(v), x.p(u), c, e, sigma});
+  for (std::size_t k = 0; k < x.neighbours[v].size(); ++k) {
+    const Point3 u = x.p(x.neighbours[v][k]);
+    for (std::uint32_t g : y_edges) {
+      const Point3 c = y.p(y.poly->edges()[g].first), e = y.p(y.poly->edges()[g].second);
+      if (parallel<Policy>(x.p(v), u, c, e)) continue;
+      for (int sigma : {1, -1}) {
+        planes.push_back({x.p(v), u, c, e, sigma, Plane::Source::edge_pair, x.vertex_edges[v][k], g});
+      }
     }
   }
   for (const Plane& plane : planes) {
@@ -476,7 +487,7 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
   switch (at->kind) {
     case Feature::Kind::face:
       d.type = ConstraintType::vertex_face;
-      d.plane = face_plane(y, at->index, -1);
+      d.plane = face_plane(y, at->index, Plane::Source::y_face);
       d.y0 = d.y1 = y.p(y.face(at->index)[0]);
       d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
       return d;
@@ -559,7 +570,6 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   const auto [ia, ib] = x.poly->edges()[e];
   const auto [ic, id] = y.poly->edges()[g];
   const Point3 a = x.p(ia), b = x.p(ib), c = y.p(ic), d = y.p(id);
-  if (parallel<Policy>(a, b, c, d)) return std::nullopt;
   // s = S / N2 on e, t = U / N2 on g (eq. 2-3): S = ((c - a) x (d - c)) . n,
   // U = ((c - a) x (b - a)) . n, N2 = |n|^2, n = (b - a) x (d - c).
   const auto n2 = [&](auto as) {
@@ -580,19 +590,22 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
              return T(n2(as) - q(as));
            }) == Sign::positive;
   };
-  if (!interior(s) || !interior(u)) return std::nullopt;
+  // Cheapest first: the supporting sides and the gap's sign are triple products (static filter).
+  // Parallel edges (n = 0) make every triple product zero, so side_x == 0 rejects them too.
   const auto [xf0, xf1] = x.edge_faces[e];
   const auto [yf0, yf1] = y.edge_faces[g];
   const Sign side_x = common_side<Policy>(a, b, c, d, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
+  if (side_x == Sign::zero) return std::nullopt;
   const Sign side_y = common_side<Policy>(a, b, c, d, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
-  if (side_x == Sign::zero || side_y != -side_x) return std::nullopt;
-  const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1};
+  if (side_y != -side_x) return std::nullopt;
+  const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1, Plane::Source::edge_pair, e, g};
+  const Sign gap_sign = -side_x * triple_sign<Policy>(a, b, c, d, a, c);
   const auto gap = [=](auto as) {
     using T = typename decltype(as)::type;
     return dot(plane_normal<T>(plane), sub<T>(a, c));
   };
-  const Sign gap_sign = decide<Policy>(gap);
   if (gap_sign == Sign::positive && !within<Policy>(Distance{gap, n2}, tolerance)) return std::nullopt;
+  if (!interior(s) || !interior(u)) return std::nullopt;
   if (gap_sign == Sign::negative && (!segment_meets<Policy>(y, a, b) || !segment_meets<Policy>(x, c, d))) {
     return std::nullopt;
   }
@@ -678,6 +691,18 @@ Vec<FT> frame_normal(const Frame<FT>& frame, const Plane& plane) {
 
 Point3 negate(const Point3& p) { return {-p.x, -p.y, -p.z}; }
 
+PlaneSource source_of(const Plane& plane, bool x_is_cp) {
+  using Kind = PlaneSource::Kind;
+  const std::uint32_t cp_index = x_is_cp ? plane.x_index : plane.y_index;
+  const std::uint32_t tp_index = x_is_cp ? plane.y_index : plane.x_index;
+  switch (plane.source) {
+    case Plane::Source::x_face: return {x_is_cp ? Kind::cp_face : Kind::tp_face, cp_index, tp_index};
+    case Plane::Source::y_face: return {x_is_cp ? Kind::tp_face : Kind::cp_face, cp_index, tp_index};
+    case Plane::Source::edge_pair: break;
+  }
+  return {Kind::edge_pair, cp_index, tp_index};
+}
+
 // Tangent basis of §2.3: t1 = the unit projection onto the plane of the axis least aligned with
 // the normal, t2 = n x t1.
 void set_tangents(ContactConstraint& c) {
@@ -735,9 +760,10 @@ ContactConstraint construct(const Decision& d, const Frame<FT>& frame) {
   c.point_cp = d.x_is_cp ? point_x : point_y;
   c.point_tp = d.x_is_cp ? point_y : point_x;
   c.normal = d.x_is_cp ? normal : negate(normal);
+  c.plane = d.line_normal ? PlaneSource{PlaneSource::Kind::contact_line, 0, 0} : source_of(d.plane, d.x_is_cp);
   for (const Plane& plane : d.candidates) {
     const Point3 u = unit(frame_normal(frame, plane));
-    c.candidate_normals.push_back(d.x_is_cp ? u : negate(u));
+    c.candidates.push_back({d.x_is_cp ? u : negate(u), source_of(plane, d.x_is_cp)});
   }
   set_tangents(c);
   return c;

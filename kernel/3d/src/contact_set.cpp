@@ -85,7 +85,11 @@ struct PlanarIntersection {
            x.y <= std::max(p.y, q.y) && std::min(p.z, q.z) <= x.z && x.z <= std::max(p.z, q.z);
   }
 
-  // Is x in the closed convex feature f (a point, a segment or a strictly convex polygon)?
+  // Is x in the closed convex feature f (a point, a segment or a strictly convex polygon)? A
+  // point of a segment's line is on it when each coordinate lies between the ends'. A point
+  // is outside a polygon exactly when its orientations against the edges take both signs: the
+  // signed areas of the triangles (f_i, f_i+1, x) sum to the polygon's, so one has the
+  // polygon's sign, and a point outside is on the other side of some edge.
   bool contains(const std::vector<Point3>& f, const Point3& x) const {
     if (f.size() == 1) return f[0] == x;
     if (f.size() == 2) return orient(f[0], f[1], x) == Sign::zero && between(x, f[0], f[1]);

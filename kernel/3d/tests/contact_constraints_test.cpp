@@ -96,7 +96,8 @@ void check_frame(const ContactConstraint& c) {
 }
 
 bool has_point(const std::vector<ContactConstraint>& cs, const Point3& p, double tolerance) {
-  return std::any_of(cs.begin(), cs.end(), [&](const ContactConstraint& c) { return norm(c.point_tp - p) <= tolerance; });
+  return std::any_of(cs.begin(), cs.end(),
+                     [&](const ContactConstraint& c) { return norm(c.point_tp - p) <= tolerance; });
 }
 
 template <class Test>
@@ -126,13 +127,14 @@ BOOST_AUTO_TEST_CASE(cube_resting_on_a_face) {
           BOOST_TEST((c.type == ConstraintType::vertex_face));
           BOOST_TEST((c.entering == rk::BlockRole::tp));
           BOOST_TEST((c.cp_feature == Feature{Feature::Kind::face, box_top, 0}));
+          BOOST_TEST((c.plane == rk::PlaneSource{rk::PlaneSource::Kind::cp_face, box_top, 0}));
           BOOST_TEST((c.tp_feature.kind == Feature::Kind::vertex));
           BOOST_TEST(c.tp_feature.index < 4u);  // the cube's bottom corners are its vertices 0-3
           BOOST_TEST((c.point_tp == cube[c.tp_feature.index]));
           BOOST_TEST((c.point_cp == c.point_tp));
           BOOST_TEST((c.normal == Point3{0, 0, 1}));
           BOOST_TEST(c.gap == 0.0);
-          BOOST_TEST(c.candidate_normals.empty());
+          BOOST_TEST(c.candidates.empty());
           check_frame(c);
         }
         const auto swapped = rk::contact_constraints<P>(cube, base);
@@ -252,6 +254,7 @@ BOOST_AUTO_TEST_CASE(crossing_ridges) {
           BOOST_TEST((c.type == ConstraintType::edge_edge));
           BOOST_TEST((c.cp_feature == Feature{Feature::Kind::edge, lower_ridge, 0}));
           BOOST_TEST((c.tp_feature == Feature{Feature::Kind::edge, upper_ridge, 0}));
+          BOOST_TEST((c.plane == rk::PlaneSource{rk::PlaneSource::Kind::edge_pair, lower_ridge, upper_ridge}));
           BOOST_TEST((c.normal == Point3{0, 0, 1}));
           BOOST_TEST((c.point_cp == Point3{0, 0, 1}));
           BOOST_TEST((c.point_tp == Point3{0, 0, 1 + lift}));
@@ -294,10 +297,16 @@ BOOST_AUTO_TEST_CASE(vertex_on_an_edge) {
       BOOST_TEST((k.point_tp == Point3{0.5, 1, 1}));
       BOOST_TEST((k.normal == Point3{0, 1, 0}));
       BOOST_TEST(k.gap == 0.0);
-      BOOST_TEST_REQUIRE(k.candidate_normals.size() == 2u);
-      BOOST_TEST((k.candidate_normals[0] == Point3{0, 1, 0}));
+      const std::uint32_t cube_edge = edge_index(cube, {0, 1, 1}, {1, 1, 1});
+      BOOST_TEST((k.plane == rk::PlaneSource{rk::PlaneSource::Kind::cp_face, box_back, 0}));
+      BOOST_TEST_REQUIRE(k.candidates.size() == 2u);
+      BOOST_TEST((k.candidates[0].normal == Point3{0, 1, 0}));
+      BOOST_TEST((k.candidates[0].source == k.plane));
       const double h = std::sqrt(0.5);
-      BOOST_TEST(norm(k.candidate_normals[1] - Point3{0, h, h}) <= 0x1p-52);  // rounded unit
+      BOOST_TEST(norm(k.candidates[1].normal - Point3{0, h, h}) <= 0x1p-52);  // rounded unit
+      BOOST_TEST((k.candidates[1].source.kind == rk::PlaneSource::Kind::edge_pair));
+      BOOST_TEST(k.candidates[1].source.cp_index == cube_edge);
+      BOOST_TEST(k.candidates[1].source.tp_index == edge_index(octa, {0.5, 1, 1}, {0.5, 1.5, 0.5}));
     }
   });
 }
@@ -326,10 +335,14 @@ BOOST_AUTO_TEST_CASE(vertex_on_a_vertex) {
         BOOST_TEST(k.gap == 0.0);
         const double s = cube_first ? 1 : -1;
         BOOST_TEST((k.normal == Point3{0, 0, s}));
-        BOOST_TEST_REQUIRE(k.candidate_normals.size() == 3u);
+        BOOST_TEST_REQUIRE(k.candidates.size() == 3u);
         for (const Point3 axis : {Point3{s, 0, 0}, Point3{0, s, 0}, Point3{0, 0, s}}) {
-          BOOST_TEST(std::count(k.candidate_normals.begin(), k.candidate_normals.end(), axis) == 1);
+          BOOST_TEST(std::count_if(k.candidates.begin(), k.candidates.end(),
+                                   [&](const rk::CandidatePlane& p) { return p.normal == axis; }) == 1);
         }
+        // The cube's top face, as a face of cp or of tp.
+        const auto kind = cube_first ? rk::PlaneSource::Kind::cp_face : rk::PlaneSource::Kind::tp_face;
+        BOOST_TEST((k.plane == rk::PlaneSource{kind, cube_first ? box_top : 0, cube_first ? 0 : box_top}));
         const Feature corner{Feature::Kind::vertex, 6, 0};  // the box's vertex (hi, hi, hi)
         BOOST_TEST(((cube_first ? k.cp_feature : k.tp_feature) == corner));
       }
@@ -355,8 +368,8 @@ BOOST_AUTO_TEST_CASE(stacked_cubes_corner_on_corner) {
         BOOST_TEST(c.point_cp.z == 1.0);
         BOOST_TEST((c.point_cp == c.point_tp));
         BOOST_TEST(c.gap == 0.0);
-        BOOST_TEST(!c.candidate_normals.empty());
-        for (const Point3& n : c.candidate_normals) BOOST_TEST((n == Point3{0, 0, 1}));
+        BOOST_TEST(!c.candidates.empty());
+        for (const rk::CandidatePlane& p : c.candidates) BOOST_TEST((p.normal == Point3{0, 0, 1}));
       }
     }
   });
@@ -539,4 +552,43 @@ BOOST_AUTO_TEST_CASE(contact3d_reference_pairs) {
                      << " edge-edge, " << by_type[2] << " vertex-edge, " << by_type[3] << " vertex-vertex; "
                      << overlap_without << " overlapping pairs without a constraint; Float's feature list differs on "
                      << float_differs << " of 132 pairs");
+}
+
+// Rigid-motion invariance: the cyclic permutation (x, y, z) -> (y, z, x) is an exact rotation
+// (it keeps every coordinate and the faces' orientation), so every contact3d pair rotated must
+// give the same constraints: the same types, features and order exactly (the decisions are
+// exact, and ties are broken by indices, never by coordinates), normals and points rotated,
+// gaps equal. The constructed numbers may differ by the different order of the rounded sums:
+// 32 ulps of the scale for gaps and points (as in contact3d_reference_pairs) plus 4 ulps of the
+// largest coordinate for points (which are rounded back to the input's position), and 8 ulps
+// for unit normals.
+BOOST_AUTO_TEST_CASE(contact3d_rotation_invariance) {
+  const auto rotate = [](const ConvexPolyhedron& p) {
+    std::vector<Point3> vertices;
+    for (const Point3& v : p.vertices()) vertices.push_back({v.y, v.z, v.x});
+    return ConvexPolyhedron::make(p.name() + " rotated", std::move(vertices),
+                                  std::vector<ConvexPolyhedron::Face>(p.faces().begin(), p.faces().end()));
+  };
+  const auto turn = [](const Point3& v) { return Point3{v.y, v.z, v.x}; };
+  for (const auto& pair : rockcontact::testing::contact3d_pairs()) {
+    BOOST_TEST_CONTEXT("pair " << pair.id) {
+      const double scale = number(pair.expected.at("scale"));
+      const double slack = 32 * 0x1p-52 * scale, point_slack = slack + 4 * 0x1p-52 * max_coordinate(pair.cp, pair.tp);
+      const auto cs = rk::contact_constraints<rk::Filtered>(pair.cp, pair.tp);
+      const auto rs = rk::contact_constraints<rk::Filtered>(rotate(pair.cp), rotate(pair.tp));
+      BOOST_TEST_REQUIRE(cs.size() == rs.size());
+      for (std::size_t i = 0; i < cs.size(); ++i) {
+        BOOST_TEST((cs[i].type == rs[i].type));
+        BOOST_TEST((cs[i].cp_feature == rs[i].cp_feature));
+        BOOST_TEST((cs[i].tp_feature == rs[i].tp_feature));
+        BOOST_TEST((cs[i].entering == rs[i].entering));
+        BOOST_TEST(std::fabs(cs[i].gap - rs[i].gap) <= slack);
+        BOOST_TEST(norm(turn(cs[i].normal) - rs[i].normal) <= 8 * 0x1p-52);
+        BOOST_TEST(norm(turn(cs[i].point_cp) - rs[i].point_cp) <= point_slack);
+        BOOST_TEST(norm(turn(cs[i].point_tp) - rs[i].point_tp) <= point_slack);
+        BOOST_TEST((cs[i].plane == rs[i].plane));
+        BOOST_TEST(cs[i].candidates.size() == rs[i].candidates.size());
+      }
+    }
+  }
 }

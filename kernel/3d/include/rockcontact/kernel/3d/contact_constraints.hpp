@@ -32,9 +32,10 @@
 //      (both faces of X at e on one side), the parallel plane through g supports Y on the other
 //      side, the gap between the planes is <= tolerance, and, for a negative gap, e meets the
 //      interior of Y and g the interior of X (exact): the edges cut into the other block, not
-//      only cross in projection (and never for a touching pair, whose interiors are disjoint). (Asking p_e in Y and p_g in X instead would miss
-//      crossings where a block's wedge leans sideways: the edges interpenetrate next to the
-//      closest points, not at them.) The normal is n oriented away from X.
+//      only cross in projection (never for a touching pair, whose interiors are disjoint).
+//      Asking p_e in Y and p_g in X instead would miss crossings where a block's wedge leans
+//      sideways: the edges interpenetrate next to the closest points, not at them. The normal
+//      is n oriented away from X.
 //   3. Vertex-edge and vertex-vertex contacts have no unique plane (§2.2). The shortest-exit
 //      rule (§2.2.1) chooses one among candidate planes neighbouring the contact: the faces of
 //      Y at the edge (or at the vertex w), the faces of X at v, and the planes spanned by an
@@ -48,8 +49,8 @@
 //      the order: faces of Y, faces of X, edge pairs, each by increasing index; so a vertex on
 //      an edge of a face it rests on takes that face's normal. If no candidate passes (a
 //      separated pair within tolerance whose tangent cones overlap) the normal is the unit of
-//      p - v, the line of the two contact points. Every passing candidate's normal is kept in
-//      candidate_normals, the "vector list for potential contact normal directions" of §4.2,
+//      p - v, the line of the two contact points. Every passing candidate is kept in
+//      candidates, the "vector list for potential contact normal directions" of §4.2,
 //      for the open-close iteration to re-run the rule with updated points (§4.3).
 //   Duplicates: each type has its own feature pair, and no contact is found twice: edge-edge
 //   needs interior points of both edges (a crossing at a vertex is that vertex's contact), a
@@ -75,18 +76,29 @@
 // Known limits: a vertex touching the other block (on its boundary) where the two blocks
 // overlap around it, so that no candidate plane passes the no-overlap check (a corner on a
 // coincident corner of an overlapping block; identical blocks), gives no constraint, as there is
-// no plane to push along: two identical blocks yield none at all. An edge where two parts meet flush (inside a flat face of the union) still
-// counts as an edge, so a face resting across it gets extra corner constraints there (with the
-// right normal and gap).
+// no plane to push along: two identical blocks yield none at all. An edge where two parts meet
+// flush (inside a flat face of the union) still counts as an edge of each part, so a face
+// resting across it gets extra corner constraints there, and a vertex resting on it one
+// constraint per part (each with the right normal and gap: more stiffness, not a wrong force).
+//
+// For the implicit DDA (seed 001 §3-§5): a constraint is what §4.2 stores per contact. Its
+// normal spring acts on gap = (point_tp - point_cp) . normal, linear in the two blocks'
+// displacements through the points (T_i(x) of eq. 11) with the normal fixed over the step (§3.1);
+// (type, cp_feature, tp_feature) identifies the contact across steps, to inherit its mode
+// (§2.4 method 2); the features and points are what the revision of §5.1 (eq. 41-45) needs
+// (the vertex and face of a vertex-face, the two edges of an edge-edge); `plane` and
+// `candidates` let the open-close iteration redo the shortest exit with updated points (§4.3).
 //
 // Robustness: every decision above (the location of a vertex, interior parameters, supporting
 // sides, the tolerance, the no-overlap check, the shortest-exit comparison) is the exact sign of
 // a polynomial of input coordinates and the tolerance, under Filtered, Exact and Checked
-// (interval arithmetic, then CGAL::Mpzf); a touch with gap exactly 0 reports gap 0 exactly and
-// equal contact points where the two coincide. Constructions follow the decisions: under Float
-// and Filtered in double after translating the pair to a local origin (a vertex of cp), so their
-// error is a few ulps of the pair's size, not of its distance from the origin; under Exact in
-// exact rationals (square roots for unit normals and distances in 256-bit MPFR), rounded once.
+// (triple products through predicates.hpp's static filter, the other formulas, of degree 2 to
+// 8, through interval arithmetic; then CGAL::Mpzf); a touch reports gap exactly 0 and equal
+// contact points. Constructions follow the decisions: under Float and Filtered in double after
+// translating the pair to a local origin (a vertex of cp), so their error is a few ulps of the
+// pair's size, not of its distance from the origin; under Exact in exact rationals (square
+// roots for unit normals and distances in 256-bit MPFR), rounded once. Contact points that are
+// input vertices are returned exactly as given.
 // Float decides in double too, as the naive baseline.
 
 #include <cstdint>
@@ -114,6 +126,24 @@ struct Feature {
 
 enum class BlockRole : std::uint8_t { cp, tp };
 
+// Where a contact plane comes from: the plane of a face of cp or of tp, the plane through an
+// edge of each block parallel to the other (edge_pair), or, for a vertex-edge or vertex-vertex
+// contact without a passing candidate, the line of the two contact points (contact_line).
+// Indices are into faces() or edges() of the parts named by cp_feature.part and tp_feature.part.
+struct PlaneSource {
+  enum class Kind : std::uint8_t { cp_face, tp_face, edge_pair, contact_line };
+  Kind kind = Kind::cp_face;
+  std::uint32_t cp_index = 0;  // cp's face (cp_face) or edge (edge_pair); 0 otherwise
+  std::uint32_t tp_index = 0;  // tp's face (tp_face) or edge (edge_pair); 0 otherwise
+  friend bool operator==(const PlaneSource&, const PlaneSource&) = default;
+};
+
+// A candidate plane of the shortest-exit rule that passed the no-overlap check.
+struct CandidatePlane {
+  Point3 normal;  // unit, from cp towards tp
+  PlaneSource source;
+};
+
 struct ContactConstraint {
   ConstraintType type = ConstraintType::vertex_face;
   Feature cp_feature;  // cp's vertex, edge or face in contact
@@ -125,12 +155,13 @@ struct ContactConstraint {
   Point3 point_cp;  // contact point on cp, metres
   Point3 point_tp;  // contact point on tp, metres
   Point3 normal;    // unit normal of the contact plane, from cp towards tp
+  PlaneSource plane;  // what it is the plane of (for vertex-edge, vertex-vertex: the shortest exit)
   double gap = 0.0; // (point_tp - point_cp) . normal, metres; negative = penetration
   Point3 tangent1;  // unit, normal x tangent1 = tangent2: a right-handed basis (t1, t2, n)
   Point3 tangent2;
-  // Vertex-edge and vertex-vertex only: the unit normals (cp -> tp) of every candidate plane
-  // that passed the no-overlap check, the chosen one included; empty for the other types.
-  std::vector<Point3> candidate_normals;
+  // Vertex-edge and vertex-vertex only: every candidate plane that passed the no-overlap check,
+  // the chosen one included, in the tie-break order; empty for the other types.
+  std::vector<CandidatePlane> candidates;
 };
 
 // The constraints of two convex blocks closer than `tolerance` (metres, >= 0), touching or

@@ -1,6 +1,8 @@
 #pragma once
 // The contact set of two touching convex polyhedra: the closed set a ∩ b, a point, a segment or
-// a convex polygon, as its corners.
+// a convex polygon, as its corners (for parallel edge-edge, edge-face and face-face contacts,
+// the "boundary vertices of the overlapping polygon" that seed 001 §1 uses as contact
+// positions).
 //
 // Whether the pair touches (meets, interiors disjoint) is decided exactly by classify_overlap
 // (overlap.hpp) under Filtered, Exact and Checked; the result is nullopt unless it does.

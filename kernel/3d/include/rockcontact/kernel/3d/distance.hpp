@@ -10,9 +10,10 @@
 // closest pair can always be slid to a vertex-face, face-vertex or edge-edge one, and a
 // parallel edge-edge pair to a vertex-edge one. So the distance is the minimum of
 //   * vertex x of one block against a face of the other whose plane's foot of x lies in the
-//     face (|(x - f0) . n| / |n|, n the face's normal);
+//     face (|(x - f0) . n| / |n|, n the face's normal; the projection of seed 001 §2.1 eq. 1);
 //   * vertex against edge, the foot clamped to the edge (this covers vertex-vertex);
-//   * edge against edge, not parallel, where both lines' closest points fall inside the edges.
+//   * edge against edge, not parallel, where both lines' closest points fall inside the edges
+//     (the common perpendicular of seed 001 §2.1 eqs. 2-3).
 // Every candidate is the distance between a point of A and a point of B, so none is below the
 // true distance, and the true closest pair is among them: the minimum is exact in exact
 // arithmetic, and each comparison and clamp is a comparison of rationals under Exact.

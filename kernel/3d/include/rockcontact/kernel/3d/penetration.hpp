@@ -16,7 +16,10 @@
 // the normal of the facet nearest to the origin it is the minimum. M's facet normals are among
 // the outward face normals of cp, the inward face normals of tp and +-(e x f) for a
 // non-parallel edge e of cp and edge f of tp (overlap.hpp), so the minimum of h(n)/|n| over
-// these candidates is the depth and its n the direction (pointing from cp towards tp).
+// these candidates is the depth and its n the direction (pointing from cp towards tp). This is
+// the shortest exit of seed 001 §2.2.1 (eq. 4: among candidate contact planes, the one with the
+// shortest normal penetration) taken over every candidate plane of the pair rather than those
+// next to one contacting vertex or edge.
 // The candidates are unnormalised, so they are compared by h |h| / |n|^2, which keeps the
 // sign (h > 0 for every candidate of an overlapping pair in exact arithmetic: no candidate
 // plane separates it even weakly) and needs no square root.
