@@ -110,11 +110,20 @@ BOOST_AUTO_TEST_CASE(random_planes) {
     return Plane3::from_coefficients(u(rng), u(rng), u(rng), u(rng));
   };
   float_misses = 0;
+  const auto before = rk::predicate_counters();
   for (int i = 0; i < 2000; ++i) {
     const Plane3 s = plane(), p = plane(), q = plane(), r = plane();
     check_point(s, point());
     if (independent(p, q, r)) check_three_plane(s, p, q, r);
   }
+  [[maybe_unused]] const auto spent = rk::predicate_counters() - before;
+#if ROCKCONTACT_PREDICATE_STATS
+  // The double filters decide random (non-degenerate) cases: fewer than 1% reach the interval
+  // stage (counted over Filtered, Exact and Checked's staged calls alike).
+  const auto kind = static_cast<std::size_t>(rk::PredicateKind::plane_side);
+  BOOST_TEST(spent.calls[kind] > 0u);
+  BOOST_TEST(spent.interval_fallbacks[kind] * 100 < spent.calls[kind]);
+#endif
   BOOST_TEST_MESSAGE("random planes: Float misses " << float_misses);
 }
 
