@@ -159,7 +159,7 @@ BOOST_AUTO_TEST_CASE(random_pairs_symmetric_and_bounded) {
       if (rk::orient3d<rk::Exact>(v[0], v[1], v[2], v[3]) != rk::Sign::zero) return make_tet(name, v);
     }
   };
-  int overlapping = 0;
+  int overlapping = 0, float_misses = 0;
   for (int i = 0; i < 400; ++i) {
     const ConvexPolyhedron a = random_polyhedron("a"), b = random_polyhedron("b");
     const HalfspacePolyhedron ab = rk::intersection<rk::Checked>(a, b);
@@ -170,9 +170,12 @@ BOOST_AUTO_TEST_CASE(random_pairs_symmetric_and_bounded) {
     BOOST_TEST(std::fabs(ab.volume<rk::Checked>() - v.get_d()) <= 1e-12);
     if (i < 100) rockcontact::testing::check_valid(ab);
     overlapping += v > 0;
+    // Float decides in plain double: on these grid points (many exact coincidences) it may be
+    // wrong, which is counted, but it must stay defined (finite or NaN, no crash).
+    float_misses += !(std::fabs(rk::intersection_volume<rk::Float>(a, b) - v.get_d()) <= 1e-12);
   }
   BOOST_TEST(overlapping >= 50);  // the draw must exercise non-empty intersections
-  BOOST_TEST_MESSAGE("random pairs: " << overlapping << " of 400 overlap");
+  BOOST_TEST_MESSAGE("random pairs: " << overlapping << " of 400 overlap; Float's volume off on " << float_misses);
 }
 
 // The double vertices (halfspace_polyhedron.hpp): each implicit vertex of every contact3d
