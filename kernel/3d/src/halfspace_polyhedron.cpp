@@ -85,7 +85,7 @@ using Bounded = detail::RunningError;
 using detail::bound_rounding_margin;
 
 // A double vertex is kept when certified within 2^-42 of the polyhedron's extent (the largest
-// frame coordinate of its vertices): a volume then moves by at most about
+// frame coordinate of its vertices, bounded from below): a volume then moves by at most about
 // area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README allows near zero and far
 // below its 1e-9 relative tolerance.
 constexpr double vertex_tolerance = 0x1p-42;
@@ -94,6 +94,8 @@ constexpr double vertex_tolerance = 0x1p-42;
 // det, and ES, ED their running bounds,
 //   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
 // plus one rounding of the quotient. No point when |D| <= ED (the sign of det is not certain).
+// The bound itself is computed in double, to within a few eps relative: negligible against the
+// 2^-42 it is compared with.
 struct CertifiedPoint {
   Vector3T<double> x;
   double error;
@@ -137,12 +139,13 @@ std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, co
   std::vector<detail::PlaneCoefficients<Bounded>> planes;
   planes.reserve(h.planes().size());
   for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<Bounded>(plane, o));
-  // First pass: input points and candidate implicit points; the extent is the largest frame
-  // coordinate among them.
+  // First pass: input points and candidate implicit points. The extent is a lower bound on the
+  // largest frame coordinate of the exact vertices, |x| - error over the candidates, so a
+  // badly conditioned candidate cannot widen the tolerance of the others.
   std::vector<std::optional<CertifiedPoint>> candidates(h.vertices().size());
   double extent = 0.0;
-  const auto widen = [&](const Vector3T<double>& x) {
-    extent = std::max({extent, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+  const auto widen = [&](const CertifiedPoint& c) {
+    extent = std::max({extent, std::fabs(c.x.x) - c.error, std::fabs(c.x.y) - c.error, std::fabs(c.x.z) - c.error});
   };
   for (std::size_t i = 0; i < h.vertices().size(); ++i) {
     const HalfspacePolyhedron::Vertex& v = h.vertices()[i];
@@ -151,7 +154,7 @@ std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, co
     } else {
       candidates[i] = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
     }
-    if (candidates[i]) widen(candidates[i]->x);
+    if (candidates[i]) widen(*candidates[i]);
   }
   std::vector<Vector3T<double>> out;
   out.reserve(h.vertices().size());
