@@ -193,6 +193,55 @@ ExactRational exact_volume(const HalfspacePolyhedron& h) {
 }  // namespace
 
 template <NumberPolicy Policy>
+std::vector<Sign> HalfspacePolyhedron::sides(const Plane3& s) const {
+  std::vector<Sign> out(vertices_.size());
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    for (std::uint32_t v = 0; v < out.size(); ++v) out[v] = side<Policy>(v, s);
+  } else {
+    // The stages of side_of_plane(s, p, q, r) (plane.hpp), the double filter on coefficients in
+    // the frame of the polyhedron (any frame gives the same exact sign).
+    const Point3 o = frame_origin();
+    const detail::PlaneCoefficients<Bounded> cs = detail::plane_coefficients<Bounded>(s, o);
+    std::vector<std::optional<detail::PlaneCoefficients<Bounded>>> cache(planes_.size());
+    const auto coefficients = [&](std::uint32_t i) -> const detail::PlaneCoefficients<Bounded>& {
+      if (!cache[i]) cache[i] = detail::plane_coefficients<Bounded>(planes_[i], o);
+      return *cache[i];
+    };
+    for (std::uint32_t v = 0; v < out.size(); ++v) {
+      const Vertex& vertex = vertices_[v];
+      if (vertex.input) {
+        out[v] = side_of_plane<Policy>(s, vertex.point);
+        continue;
+      }
+      const auto [i, j, k] = vertex.planes;
+      const Plane3 &p = planes_[i], &q = planes_[j], &r = planes_[k];
+      if (s == p || s == q || s == r) {
+        out[v] = Sign::zero;
+        continue;
+      }
+      detail::count_call(PredicateKind::plane_side);
+      const Bounded value = detail::three_plane_side_of_coefficients(cs, coefficients(i), coefficients(j), coefficients(k));
+      const double bound = bound_rounding_margin * value.error;
+      Sign staged;
+      if (std::isfinite(value.value) && std::isfinite(bound) && std::fabs(value.value) > bound) {
+        staged = sign_of(value.value);
+      } else {
+        staged = detail::three_plane_side_interval_exact(s, p, q, r);
+      }
+      if constexpr (Policy::kind == PolicyKind::checked) {
+        const Sign exact = detail::three_plane_side_exact(s, p, q, r);
+        if (staged != exact) {
+          const Plane3* planes[] = {&s, &p, &q, &r};
+          detail::plane_side_disagrees(planes, 4, nullptr, staged, exact);
+        }
+      }
+      out[v] = staged;
+    }
+  }
+  return out;
+}
+
+template <NumberPolicy Policy>
 std::vector<Point3> HalfspacePolyhedron::vertex_coordinates() const {
   const Point3 o = frame_origin();
   std::vector<Point3> out;
@@ -223,6 +272,7 @@ double HalfspacePolyhedron::volume() const {
 }
 
 #define ROCKCONTACT_INSTANTIATE(P)                                                 \
+  template std::vector<Sign> HalfspacePolyhedron::sides<P>(const Plane3&) const;   \
   template std::vector<Point3> HalfspacePolyhedron::vertex_coordinates<P>() const; \
   template double HalfspacePolyhedron::volume<P>() const;
 ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)

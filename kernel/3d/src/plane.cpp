@@ -112,6 +112,10 @@ std::optional<Sign> three_plane_side_filter(const Plane3& s, const Plane3& p, co
 Sign three_plane_side_staged(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r) {
   count_call(PredicateKind::plane_side);
   if (const auto sign = three_plane_side_filter(s, p, q, r)) return *sign;
+  return three_plane_side_interval_exact(s, p, q, r);
+}
+
+Sign three_plane_side_interval_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r) {
   return interval_then_exact_sign(PredicateKind::plane_side, three_plane_side_of(s, p, q, r));
 }
 

@@ -75,6 +75,12 @@ class HalfspacePolyhedron {
   template <NumberPolicy Policy>
   Sign side(std::uint32_t v, const Plane3& s) const;
 
+  // The side of plane s at every vertex: side() for each, with the three-plane side's double
+  // filter evaluated on plane coefficients computed once per plane instead of once per call
+  // (the same signs, the same counters, the same Checked comparison).
+  template <NumberPolicy Policy>
+  std::vector<Sign> sides(const Plane3& s) const;
+
   template <NumberPolicy Policy>
   std::vector<Point3> vertex_coordinates() const;
 

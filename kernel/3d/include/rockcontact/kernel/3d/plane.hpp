@@ -71,6 +71,7 @@ Sign coefficient_side_interval_exact(const Plane3& s, const Point3& x);
 Sign coefficient_side_exact(const Plane3& s, const Point3& x);
 double coefficient_side_naive(const Plane3& s, const Point3& x);
 Sign three_plane_side_staged(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
+Sign three_plane_side_interval_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 Sign three_plane_side_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 Sign three_plane_side_naive(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 [[noreturn]] void plane_side_disagrees(const Plane3* const* planes, int count, const Point3* x, Sign staged,
