@@ -4,6 +4,8 @@
 
 #include "rockcontact/kernel/3d/halfspace_polyhedron.hpp"
 
+#include <CGAL/Mpzf.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -15,6 +17,7 @@
 
 #include "rockcontact/kernel/3d/detail/halfspace_exact.hpp"
 #include "rockcontact/kernel/3d/detail/plane_formulas.hpp"
+#include "rockcontact/kernel/3d/detail/running_error.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 
 namespace rockcontact::kernel {
@@ -78,94 +81,87 @@ std::vector<Vector3T<ExactRational>> exact_frame_coordinates(const HalfspacePoly
   return out;
 }
 
-// A double with the magnitude of its formula: the same expression on the absolute values of
-// its input doubles with every difference turned into a sum. A formula whose every path from an
-// input to the result passes through at most k roundings (eps = 2^-52 per operation, any
-// rounding mode), none of them an underflow, is then computed within gamma_k * magnitude of
-// its exact value, gamma_k = k eps / (1 - k eps) (Higham, Accuracy and Stability, sec. 3.1).
-struct Bounded {
-  double value = 0.0;
-  double magnitude = 0.0;
-  Bounded() = default;
-  explicit Bounded(double x) : value(x), magnitude(std::fabs(x)) {}
-  Bounded(double v, double m) : value(v), magnitude(m) {}
-  friend Bounded operator+(Bounded a, Bounded b) { return {a.value + b.value, a.magnitude + b.magnitude}; }
-  friend Bounded operator-(Bounded a, Bounded b) { return {a.value - b.value, a.magnitude + b.magnitude}; }
-  friend Bounded operator*(Bounded a, Bounded b) { return {a.value * b.value, a.magnitude * b.magnitude}; }
-};
+using Bounded = detail::RunningError;
+using detail::bound_rounding_margin;
 
-// The rounding depth of Cramer's rule on planes through points (detail/plane_formulas.hpp):
-// a difference 1, a normal 3 (product, difference), an offset d 6 (product, two sums), a cross
-// product of normals 5, so det X = sum of d (n x n) has depth 9 and det = n . (n x n) depth 8
-// (planes by coefficients are shallower). Computed in double, a magnitude (sums and products of
-// non-negative numbers, depth <= 9) is at most (1 + eps)^9 below its exact value, so
-// gamma_9 (1 + eps)^9 < 10 eps bounds both errors; 12 eps leaves room.
-constexpr double cramer_error_factor = 12.0 * 0x1p-52;
-// Below this a magnitude may hide an underflowed product: the certificate is not trusted.
-constexpr double cramer_min_magnitude = 0x1p-900;
-// A double vertex is kept when certified within 2^-42 of the polyhedron's extent: a volume then
-// moves by at most about area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README
-// allows near zero and far below its 1e-9 relative tolerance.
+// A double vertex is kept when certified within 2^-42 of the polyhedron's extent (the largest
+// frame coordinate of its vertices, bounded from below): a volume then moves by at most about
+// area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README allows near zero and far
+// below its 1e-9 relative tolerance.
 constexpr double vertex_tolerance = 0x1p-42;
 
-// An implicit vertex in double, or nothing when its error cannot be certified within `tolerance`:
-// with S and D the computed det X and det, and ES, ED their bounds,
+// An implicit vertex in double with a bound on its error: with S and D the computed det X and
+// det, and ES, ED their running bounds,
 //   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
-// plus one rounding of the quotient.
-std::optional<Vector3T<double>> certified_point(const detail::PlaneCoefficients<Bounded>& p,
-                                                const detail::PlaneCoefficients<Bounded>& q,
-                                                const detail::PlaneCoefficients<Bounded>& r, double tolerance) {
+// plus one rounding of the quotient. No point when |D| <= ED (the sign of det is not certain).
+// The bound itself is computed in double, to within a few eps relative: negligible against the
+// 2^-42 it is compared with.
+struct CertifiedPoint {
+  Vector3T<double> x;
+  double error;
+};
+
+std::optional<CertifiedPoint> certified_point(const detail::PlaneCoefficients<Bounded>& p,
+                                              const detail::PlaneCoefficients<Bounded>& q,
+                                              const detail::PlaneCoefficients<Bounded>& r) {
   const auto x = detail::three_plane_point(p, q, r);
-  const double ed = cramer_error_factor * x.det.magnitude;
+  const double ed = bound_rounding_margin * x.det.error;
   const double d = std::fabs(x.det.value);
-  if (!(d > ed) || x.det.magnitude < cramer_min_magnitude) return std::nullopt;
-  Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value, x.scaled.z.value / x.det.value};
+  if (!(d > ed)) return std::nullopt;
+  const Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value,
+                             x.scaled.z.value / x.det.value};
   const auto error = [&](double xi, const Bounded& si) {
-    return (std::fabs(xi) * ed + cramer_error_factor * si.magnitude) / (d - ed) + 0x1p-52 * std::fabs(xi);
+    return (std::fabs(xi) * ed + bound_rounding_margin * si.error) / (d - ed) + 0x1p-52 * std::fabs(xi);
   };
-  const double worst = std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)});
-  if (!(worst <= tolerance)) return std::nullopt;
-  return out;
+  return CertifiedPoint{out, std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)})};
+}
+
+// An implicit vertex from its exact homogeneous coordinates: det X and det evaluated exactly in
+// CGAL::Mpzf (no gcd, unlike rationals), each rounded to double (CGAL's Mpzf::to_double is
+// within 2 eps relative), then divided: within 5 eps of |X| per coordinate.
+Vector3T<double> exact_quotient_point(const HalfspacePolyhedron& h, const HalfspacePolyhedron::Vertex& v,
+                                      const Point3& o) {
+  using T = CGAL::Mpzf;
+  const auto x = detail::three_plane_point(detail::plane_coefficients<T>(h.planes()[v.planes[0]], o),
+                                           detail::plane_coefficients<T>(h.planes()[v.planes[1]], o),
+                                           detail::plane_coefficients<T>(h.planes()[v.planes[2]], o));
+  if (CGAL::is_zero(x.det)) {  // dependent planes: only after a wrong Float decision
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan};
+  }
+  const double det = CGAL::to_double(x.det);
+  return {CGAL::to_double(x.scaled.x) / det, CGAL::to_double(x.scaled.y) / det, CGAL::to_double(x.scaled.z) / det};
 }
 
 // Every vertex in the frame of o in double: an input point's difference rounded once, an
-// implicit point certified in double, else from exact rationals rounded once per coordinate.
+// implicit point certified in double, else from its exact homogeneous coordinates.
 std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
   std::vector<detail::PlaneCoefficients<Bounded>> planes;
   planes.reserve(h.planes().size());
   for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<Bounded>(plane, o));
+  // First pass: input points and candidate implicit points. The extent is a lower bound on the
+  // largest frame coordinate of the exact vertices, |x| - error over the candidates, so a
+  // badly conditioned candidate cannot widen the tolerance of the others.
+  std::vector<std::optional<CertifiedPoint>> candidates(h.vertices().size());
+  double extent = 0.0;
+  const auto widen = [&](const CertifiedPoint& c) {
+    extent = std::max({extent, std::fabs(c.x.x) - c.error, std::fabs(c.x.y) - c.error, std::fabs(c.x.z) - c.error});
+  };
+  for (std::size_t i = 0; i < h.vertices().size(); ++i) {
+    const HalfspacePolyhedron::Vertex& v = h.vertices()[i];
+    if (v.input) {
+      candidates[i] = CertifiedPoint{detail::difference3<double>(v.point, o), 0.0};
+    } else {
+      candidates[i] = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
+    }
+    if (candidates[i]) widen(*candidates[i]);
+  }
   std::vector<Vector3T<double>> out;
   out.reserve(h.vertices().size());
-  double extent = 0.0;
-  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
-    if (v.input) {
-      const Vector3T<double> x = detail::difference3<double>(v.point, o);
-      extent = std::max({extent, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
-    }
-  }
-  std::vector<detail::PlaneCoefficients<ExactRational>> exact;  // filled on the first fallback
-  const auto to_double = [](const ExactRational& q) { return detail::NumberOps<ExactRational>::to_double(q); };
-  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
-    if (v.input) {
-      out.push_back(detail::difference3<double>(v.point, o));
-      continue;
-    }
-    const auto x = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]],
-                                   vertex_tolerance * extent);
-    if (x) {
-      out.push_back(*x);
-      continue;
-    }
-    if (exact.empty()) {
-      for (const Plane3& plane : h.planes()) exact.push_back(detail::plane_coefficients<ExactRational>(plane, o));
-    }
-    const auto e = detail::three_plane_point(exact[v.planes[0]], exact[v.planes[1]], exact[v.planes[2]]);
-    if (CGAL::is_zero(e.det)) {  // dependent planes: only after a wrong Float decision
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      out.push_back({nan, nan, nan});
-      continue;
-    }
-    out.push_back({to_double(e.scaled.x / e.det), to_double(e.scaled.y / e.det), to_double(e.scaled.z / e.det)});
+  for (std::size_t i = 0; i < h.vertices().size(); ++i) {
+    const auto& c = candidates[i];
+    const bool certified = c && c->error <= vertex_tolerance * extent;
+    out.push_back(certified ? c->x : exact_quotient_point(h, h.vertices()[i], o));
   }
   return out;
 }
@@ -195,6 +191,55 @@ ExactRational exact_volume(const HalfspacePolyhedron& h) {
 }
 
 }  // namespace
+
+template <NumberPolicy Policy>
+std::vector<Sign> HalfspacePolyhedron::sides(const Plane3& s) const {
+  std::vector<Sign> out(vertices_.size());
+  if constexpr (Policy::kind == PolicyKind::float_) {
+    for (std::uint32_t v = 0; v < out.size(); ++v) out[v] = side<Policy>(v, s);
+  } else {
+    // The stages of side_of_plane(s, p, q, r) (plane.hpp), the double filter on coefficients in
+    // the frame of the polyhedron (any frame gives the same exact sign).
+    const Point3 o = frame_origin();
+    const detail::PlaneCoefficients<Bounded> cs = detail::plane_coefficients<Bounded>(s, o);
+    std::vector<std::optional<detail::PlaneCoefficients<Bounded>>> cache(planes_.size());
+    const auto coefficients = [&](std::uint32_t i) -> const detail::PlaneCoefficients<Bounded>& {
+      if (!cache[i]) cache[i] = detail::plane_coefficients<Bounded>(planes_[i], o);
+      return *cache[i];
+    };
+    for (std::uint32_t v = 0; v < out.size(); ++v) {
+      const Vertex& vertex = vertices_[v];
+      if (vertex.input) {
+        out[v] = side_of_plane<Policy>(s, vertex.point);
+        continue;
+      }
+      const auto [i, j, k] = vertex.planes;
+      const Plane3 &p = planes_[i], &q = planes_[j], &r = planes_[k];
+      if (s == p || s == q || s == r) {
+        out[v] = Sign::zero;
+        continue;
+      }
+      detail::count_call(PredicateKind::plane_side);
+      const Bounded value = detail::three_plane_side_of_coefficients(cs, coefficients(i), coefficients(j), coefficients(k));
+      const double bound = bound_rounding_margin * value.error;
+      Sign staged;
+      if (std::isfinite(value.value) && std::isfinite(bound) && std::fabs(value.value) > bound) {
+        staged = sign_of(value.value);
+      } else {
+        staged = detail::three_plane_side_interval_exact(s, p, q, r);
+      }
+      if constexpr (Policy::kind == PolicyKind::checked) {
+        const Sign exact = detail::three_plane_side_exact(s, p, q, r);
+        if (staged != exact) {
+          const Plane3* planes[] = {&s, &p, &q, &r};
+          detail::plane_side_disagrees(planes, 4, nullptr, staged, exact);
+        }
+      }
+      out[v] = staged;
+    }
+  }
+  return out;
+}
 
 template <NumberPolicy Policy>
 std::vector<Point3> HalfspacePolyhedron::vertex_coordinates() const {
@@ -227,6 +272,7 @@ double HalfspacePolyhedron::volume() const {
 }
 
 #define ROCKCONTACT_INSTANTIATE(P)                                                 \
+  template std::vector<Sign> HalfspacePolyhedron::sides<P>(const Plane3&) const;   \
   template std::vector<Point3> HalfspacePolyhedron::vertex_coordinates<P>() const; \
   template double HalfspacePolyhedron::volume<P>() const;
 ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)

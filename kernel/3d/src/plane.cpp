@@ -5,10 +5,12 @@
 #include "rockcontact/kernel/3d/plane.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "rockcontact/kernel/3d/detail/plane_formulas.hpp"
+#include "rockcontact/kernel/3d/detail/running_error.hpp"
 #include "rockcontact/kernel/core/detail/staged_sign.hpp"
 
 namespace rockcontact::kernel {
@@ -92,8 +94,28 @@ Sign coefficient_side_exact(const Plane3& s, const Point3& x) { return exact_sig
 
 double coefficient_side_naive(const Plane3& s, const Point3& x) { return coefficient_side_formula<double>(s, x); }
 
+// The double filter of the three-plane side: the formula evaluated once more with a running
+// error bound (detail/running_error.hpp), certain when the value exceeds the bound. It never
+// certifies zero: an exact incidence is left to the interval stage (exact when every operation
+// was) and then to Mpzf.
+namespace {
+std::optional<Sign> three_plane_side_filter(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r) {
+  const RunningError v = three_plane_side_formula<RunningError>(s, p, q, r, p.reference());
+  const double bound = bound_rounding_margin * v.error;
+  if (!std::isfinite(v.value) || !std::isfinite(bound)) return std::nullopt;
+  if (v.value > bound) return Sign::positive;
+  if (-v.value > bound) return Sign::negative;
+  return std::nullopt;
+}
+}  // namespace
+
 Sign three_plane_side_staged(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r) {
   count_call(PredicateKind::plane_side);
+  if (const auto sign = three_plane_side_filter(s, p, q, r)) return *sign;
+  return three_plane_side_interval_exact(s, p, q, r);
+}
+
+Sign three_plane_side_interval_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r) {
   return interval_then_exact_sign(PredicateKind::plane_side, three_plane_side_of(s, p, q, r));
 }
 

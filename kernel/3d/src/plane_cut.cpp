@@ -18,9 +18,7 @@ constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 template <NumberPolicy Policy>
 std::vector<Sign> classify(const HalfspacePolyhedron& p, const Plane3& plane) {
   const PredicateScope scope;
-  std::vector<Sign> side(p.vertices().size());
-  for (std::uint32_t v = 0; v < side.size(); ++v) side[v] = p.side<Policy>(v, plane);
-  return side;
+  return p.sides<Policy>(plane);
 }
 
 // The pieces of the result under construction: the old vertices kept, renumbered on first use,

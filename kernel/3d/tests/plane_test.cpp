@@ -6,10 +6,14 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <cfenv>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <utility>
 
+#include "rockcontact/kernel/3d/detail/plane_formulas.hpp"
+#include "rockcontact/kernel/3d/detail/running_error.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 #include "rockcontact/testing/seed.hpp"
@@ -110,11 +114,20 @@ BOOST_AUTO_TEST_CASE(random_planes) {
     return Plane3::from_coefficients(u(rng), u(rng), u(rng), u(rng));
   };
   float_misses = 0;
+  const auto before = rk::predicate_counters();
   for (int i = 0; i < 2000; ++i) {
     const Plane3 s = plane(), p = plane(), q = plane(), r = plane();
     check_point(s, point());
     if (independent(p, q, r)) check_three_plane(s, p, q, r);
   }
+  [[maybe_unused]] const auto spent = rk::predicate_counters() - before;
+#if ROCKCONTACT_PREDICATE_STATS
+  // The double filters decide random (non-degenerate) cases: fewer than 1% reach the interval
+  // stage (counted over Filtered, Exact and Checked's staged calls alike).
+  const auto kind = static_cast<std::size_t>(rk::PredicateKind::plane_side);
+  BOOST_TEST(spent.calls[kind] > 0u);
+  BOOST_TEST(spent.interval_fallbacks[kind] * 100 < spent.calls[kind]);
+#endif
   BOOST_TEST_MESSAGE("random planes: Float misses " << float_misses);
 }
 
@@ -188,4 +201,49 @@ BOOST_AUTO_TEST_CASE(opposite_and_validation) {
 #if ROCKCONTACT_PREDICATE_STATS
   BOOST_TEST(spent.calls[static_cast<std::size_t>(rk::PredicateKind::plane_side)] == 1u);
 #endif
+}
+
+// The running error bound of the three-plane side's double filter (detail/running_error.hpp),
+// re-derived: the formula in RunningError against the same formula in GMP rationals, on random
+// planes and on lattice incidences moved by a hair (where the value is tiny and the bound is
+// what decides), under rounding to nearest and upward (the mode inside a PredicateScope after
+// an interval stage). The bound must hold every time; the filter's value must be certain on the
+// random cases.
+BOOST_AUTO_TEST_CASE(running_error_bound_holds) {
+  std::mt19937_64 rng(rockcontact::testing::seed_for("running_error_bound_holds", 20261130));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> small(-6, 6);
+  const auto point = [&] { return Point3{u(rng), u(rng), u(rng)}; };
+  const auto lattice = [&] { return Point3{double(small(rng)), double(small(rng)), double(small(rng))}; };
+  int checked = 0;
+  for (const int mode : {FE_TONEAREST, FE_UPWARD}) {
+    for (int i = 0; i < 1000; ++i) {
+      std::array<Plane3, 4> planes;
+      for (Plane3& plane : planes) {
+        for (;;) {
+          try {
+            if (i % 2 == 0) {
+              plane = Plane3::through(point(), point(), point());
+            } else {
+              const Point3 a = lattice(), b = lattice();
+              plane = Plane3::through(a, b, Point3{} - a - b);  // through the origin
+            }
+            break;
+          } catch (const std::invalid_argument&) {
+          }
+        }
+      }
+      if (i % 2 == 1) planes[0].points[0].x += 0x1p-40;
+      const auto& [s, p, q, r] = planes;
+      if (!independent(p, q, r)) continue;
+      std::fesetround(mode);
+      const auto v = rk::detail::three_plane_side_formula<rk::detail::RunningError>(s, p, q, r, p.reference());
+      std::fesetround(FE_TONEAREST);
+      const mpq_class exact = rk::detail::three_plane_side_formula<mpq_class>(s, p, q, r, p.reference());
+      const mpq_class error = abs(mpq_class(v.value) - exact);
+      BOOST_TEST(error <= mpq_class(rk::detail::bound_rounding_margin * v.error));
+      ++checked;
+    }
+  }
+  BOOST_TEST(checked >= 1500);
 }

@@ -19,11 +19,14 @@
 //   vertex_coordinates<P>()  Float, Filtered, Checked: an input vertex as given; an implicit
 //                            one by Cramer's rule in double, in a frame at the polyhedron's
 //                            first input vertex (so the coefficients stay small for a pair far
-//                            from the origin), with a running error bound; a vertex not
-//                            certified within 2^-42 of the polyhedron's extent (three nearly
-//                            dependent planes: faces of two blocks parallel to within rounding)
-//                            is computed in exact rationals and rounded instead. Exact: Cramer's
-//                            rule in exact rationals, each coordinate rounded once.
+//                            from the origin), with a running error bound
+//                            (detail/running_error.hpp); a vertex not certified within 2^-42 of
+//                            the polyhedron's extent (three nearly dependent planes, e.g. faces
+//                            of two blocks parallel to within rounding: about 7% of the implicit
+//                            vertices of the contact3d random pairs) is instead divided from its
+//                            exact homogeneous coordinates (det X and det in CGAL::Mpzf, each
+//                            rounded once), within 5 eps of its size. Exact: Cramer's rule in
+//                            exact rationals, each coordinate rounded once.
 //   volume<P>()              divergence theorem: the sum over faces of the fan triangles'
 //                            signed tetrahedron volumes (1/6 det) about the first vertex, in
 //                            the same local frame; Exact: the exact rational volume rounded
@@ -71,6 +74,12 @@ class HalfspacePolyhedron {
   // one of an implicit vertex's planes).
   template <NumberPolicy Policy>
   Sign side(std::uint32_t v, const Plane3& s) const;
+
+  // The side of plane s at every vertex: side() for each, with the three-plane side's double
+  // filter evaluated on plane coefficients computed once per plane instead of once per call
+  // (the same signs, the same counters, the same Checked comparison).
+  template <NumberPolicy Policy>
+  std::vector<Sign> sides(const Plane3& s) const;
 
   template <NumberPolicy Policy>
   std::vector<Point3> vertex_coordinates() const;

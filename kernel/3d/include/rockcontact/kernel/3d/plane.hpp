@@ -21,8 +21,9 @@
 //                              a polynomial of degree up to 15 in the input doubles.
 // Both are staged like every predicate (kernel/core/detail/staged_sign.hpp) under Filtered,
 // Exact and Checked. side_of_plane(s, x) on coefficients has a static double filter (bound
-// below); the three-plane side has none yet and starts at the interval stage (one rounding-mode
-// switch per PredicateScope), so each of its calls counts as an interval fallback. Checked
+// below); the three-plane side a semi-static one: the formula evaluated in double with a
+// running error bound (detail/running_error.hpp), about three times the cost of the plain
+// double evaluation, certain when the value exceeds its bound. Checked
 // evaluates each sign exactly on its own too and throws PolicyDisagreement on a difference;
 // Float evaluates the formulas in double.
 
@@ -70,6 +71,7 @@ Sign coefficient_side_interval_exact(const Plane3& s, const Point3& x);
 Sign coefficient_side_exact(const Plane3& s, const Point3& x);
 double coefficient_side_naive(const Plane3& s, const Point3& x);
 Sign three_plane_side_staged(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
+Sign three_plane_side_interval_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 Sign three_plane_side_exact(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 Sign three_plane_side_naive(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r);
 [[noreturn]] void plane_side_disagrees(const Plane3* const* planes, int count, const Point3* x, Sign staged,

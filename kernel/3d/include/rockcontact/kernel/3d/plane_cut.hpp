@@ -24,8 +24,9 @@
 // pieces, a face on the plane becomes a face of one piece, a plane that only touches p gives
 // p and the empty polyhedron. The empty polyhedron is returned for every result without
 // interior (the lower-dimensional set p ∩ plane is not represented).
-// Cost: one predicate per vertex and O(V + E) work; no construction. The predicates run in a
-// PredicateScope.
+// Cost: one predicate per vertex, O(V + E) work plus a linear search among the k new vertices
+// for each cut edge (O(k^2), k the size of the section); no construction. The predicates run
+// in a PredicateScope.
 
 #include <utility>
 

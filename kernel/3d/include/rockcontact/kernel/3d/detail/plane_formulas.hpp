@@ -81,13 +81,18 @@ HomogeneousPoint<T> three_plane_point(const PlaneCoefficients<T>& p, const Plane
 // the 4x4 determinant of the four planes' rows (n, -d) times the 3x3 determinant of the three
 // normals. For planes through input points its degree is 15 in the input doubles (3 + 6 + 6).
 template <class T>
+T three_plane_side_of_coefficients(const PlaneCoefficients<T>& s, const PlaneCoefficients<T>& p,
+                                   const PlaneCoefficients<T>& q, const PlaneCoefficients<T>& r) {
+  const HomogeneousPoint<T> x = three_plane_point(p, q, r);
+  const T value = dot(s.n, x.scaled) - T(s.d * x.det);
+  return T(value * x.det);
+}
+
+template <class T>
 T three_plane_side_formula(const Plane3& s, const Plane3& p, const Plane3& q, const Plane3& r,
                            const Point3& o) {
-  const PlaneCoefficients<T> cs = plane_coefficients<T>(s, o);
-  const HomogeneousPoint<T> x =
-      three_plane_point(plane_coefficients<T>(p, o), plane_coefficients<T>(q, o), plane_coefficients<T>(r, o));
-  const T value = dot(cs.n, x.scaled) - T(cs.d * x.det);
-  return T(value * x.det);
+  return three_plane_side_of_coefficients(plane_coefficients<T>(s, o), plane_coefficients<T>(p, o),
+                                          plane_coefficients<T>(q, o), plane_coefficients<T>(r, o));
 }
 
 // The side of the plane a x + b y + c z = e at an input point x: a x + b y + c z - e, degree 2.
