@@ -74,11 +74,10 @@
 
 #include <cstddef>
 #include <span>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "rockcontact/kernel/2d/point.hpp"
+#include "rockcontact/kernel/core/invalid_cut.hpp"
 
 namespace rockcontact::kernel {
 
@@ -96,21 +95,9 @@ struct JointSet {
                               // for every integer j
 };
 
-// Bad input to cut_region or convex_partition. subject() names what is refused, in this
-// header's terms: "region" or "polygon" (the outline), "joint_sets[1].spacing" (a field of a
-// set, "joint_sets[1]" for the work bounds), "min_block_area", or "block near (2.5, 7.5)" (a
-// block the cut would make); problem() says why; what() is "<subject>: <problem>".
-class InvalidCut : public std::invalid_argument {
- public:
-  InvalidCut(const std::string& subject, const std::string& problem)
-      : std::invalid_argument(subject + ": " + problem), subject_(subject), problem_(problem) {}
-  const std::string& subject() const noexcept { return subject_; }
-  const std::string& problem() const noexcept { return problem_; }
-
- private:
-  std::string subject_;
-  std::string problem_;
-};
+// Bad input to cut_region or convex_partition is an InvalidCut (core/invalid_cut.hpp), its
+// subject "region" or "polygon" (the outline), "joint_sets[1].spacing", "min_block_area" or
+// "block near (2.5, 7.5)".
 
 // Work bounds of cut_region (step 1), so absurd input fails fast instead of exhausting memory.
 // Lines: trace lines of all sets that can meet the region (those within its extent along each

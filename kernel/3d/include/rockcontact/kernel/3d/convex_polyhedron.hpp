@@ -86,6 +86,13 @@ class ConvexPolyhedron {
   // same faces; vertex indices and faces as given keep their ids.
   ConvexPolyhedron moved(std::vector<Point3> vertices) const;
 
+  // The same block under another name (the name errors and messages give).
+  ConvexPolyhedron renamed(std::string name) const {
+    ConvexPolyhedron out = *this;
+    out.name_ = std::move(name);
+    return out;
+  }
+
   const std::string& name() const noexcept { return name_; }
   std::span<const Point3> vertices() const noexcept { return vertices_; }
   // The exactly planar facets, counter-clockwise seen from outside.
