@@ -38,6 +38,7 @@ install(DIRECTORY
     ${PROJECT_SOURCE_DIR}/kernel/3d/include/
     ${PROJECT_SOURCE_DIR}/contact/friction/include/
     ${PROJECT_SOURCE_DIR}/contact/potential2d/include/
+    ${PROJECT_SOURCE_DIR}/contact/generalized3d/include/
     ${PROJECT_SOURCE_DIR}/contact/embed/include/
     ${PROJECT_SOURCE_DIR}/dynamics/dda2d/include/
     ${PROJECT_SOURCE_DIR}/dynamics/io/include/

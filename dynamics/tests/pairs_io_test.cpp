@@ -146,7 +146,7 @@ BOOST_AUTO_TEST_CASE(unknown_fields_rejected) {
   json document = valid_document();
   document["mu"] = 0.5;
   expect_input_error(document, "mu",
-                     "unknown field; expected only kn, H, policy, demarcation, pairs");
+                     "unknown field; expected only dimension, kn, H, policy, demarcation, pairs");
   document = valid_document();
   document["pairs"][0]["colour"] = "red";
   expect_input_error(document, "pairs[0].colour", "unknown field; expected only id, cp, tp");

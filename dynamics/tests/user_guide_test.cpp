@@ -86,8 +86,8 @@ std::string name_of(const fs::path& file, const Block& b) {
 enum class Kind { scene, pairs, other };
 
 Kind kind_of(const json& doc) {
-  if (doc.is_object() && doc.contains("dimension")) return Kind::scene;
   if (doc.is_object() && doc.contains("pairs")) return Kind::pairs;
+  if (doc.is_object() && doc.contains("dimension")) return Kind::scene;
   return Kind::other;
 }
 

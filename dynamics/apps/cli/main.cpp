@@ -28,6 +28,8 @@
 #include "rockcontact/dynamics/dda2d.hpp"
 #include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/apps/pairs_compare.hpp"
+#include "rockcontact/dynamics/io/cut3d.hpp"
+#include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/apps/pairs_summary.hpp"
 #include "rockcontact/dynamics/apps/report.hpp"
@@ -126,9 +128,13 @@ void add_pairs(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<PairsOptions>();
   CLI::App* sub = app.add_subcommand(
       "pairs",
-      "Evaluate the contact of polygon pairs read from JSON under a number policy, or check "
-      "another kernel's results for them against ours (--compare)");
-  sub->add_option("input", options->input, "Input JSON: kn, H, pairs [{id, cp, tp}]")->required();
+      "Evaluate the contact of polygon pairs (2D) or polyhedron pairs (\"dimension\": 3) read "
+      "from JSON under a number policy, or check another kernel's results for them against "
+      "ours (--compare)");
+  sub->add_option("input", options->input,
+                  "Input JSON: kn, H, pairs [{id, cp, tp}]; in 3D dimension 3, kn, tolerance?, "
+                  "pairs [{id, cp: {vertices, faces}, tp}] (docs/user-guide.md)")
+      ->required();
   sub->add_option("-o,--output", options->output,
                   "Write the result document (with --compare: the comparison report) as JSON "
                   "('-' for stdout)");
@@ -301,8 +307,21 @@ struct CutArgs {
   std::string output;
 };
 
+// 3D: the region of a {"dimension": 3, "region", "joint_sets"} document (dynamics/io/cut3d.hpp).
+int run_cut3(const CutArgs& options, const nlohmann::json& document) {
+  const nlohmann::ordered_json blocks = dyn::cut3d_blocks(dyn::parse_cut3(document, options.scene));
+  write_json(options.output, blocks);
+  std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
+  summary << blocks.at("blocks").size() << " blocks cut from the 3D region of " << options.scene;
+  if (options.output != "-") summary << ", written to " << options.output;
+  summary << '\n';
+  return exit_ok;
+}
+
 int run_cut(const CutArgs& options) {
-  const dyn::Scene scene = dyn::read_scene_file(options.scene);
+  const nlohmann::json document = dyn::read_json_file(options.scene);
+  if (dyn::is_cut3_document(document)) return run_cut3(options, document);
+  const dyn::Scene scene = dyn::parse_scene(document, options.scene);
   if (scene.generated_count == 0) {  // a region always yields at least one block
     std::cerr << "rockcontact: " << options.scene << ": region: the scene has no region to cut\n";
     return exit_bad_input;
@@ -318,7 +337,8 @@ int run_cut(const CutArgs& options) {
 void add_cut(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<CutArgs>();
   CLI::App* sub = app.add_subcommand(
-      "cut", "Cut a scene's region by its joint sets and write the blocks as JSON");
+      "cut", "Cut a scene's region by its joint sets and write the blocks as JSON (2D, or 3D with "
+             "\"dimension\": 3)");
   sub->add_option("scene", options->scene, "Scene JSON with \"region\" and \"joint_sets\"")
       ->required();
   sub->add_option("-o,--output", options->output, "Blocks JSON ('-' for stdout)")->required();

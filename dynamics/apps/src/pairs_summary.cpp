@@ -57,6 +57,39 @@ void write_table(std::ostream& out, const ordered_json& results) {
   }
 }
 
+// 3D: volume, distance or penetration depth, contact-set dimension, constraints and the
+// largest penalty force among them.
+void write_table3(std::ostream& out, const ordered_json& results) {
+  std::size_t id_width = 2;
+  for (const auto& r : results)
+    id_width = std::max(id_width, r.at("id").get_ref<const std::string&>().size());
+  id_width += 2;
+  out << padded("id", id_width) << padded("status", 10) << padded("volume [m^3]", 14)
+      << padded("distance [m]", 14) << padded("depth [m]", 14) << padded("set", 5)
+      << padded("constraints", 13) << padded("max |force| [N]", 17) << "fallbacks\n";
+  for (const auto& r : results) {
+    const std::string& status = r.at("status").get_ref<const std::string&>();
+    out << padded(r.at("id").get<std::string>(), id_width) << padded(status, 10);
+    if (status == "error") {
+      out << r.at("error").get<std::string>() << '\n';
+      continue;
+    }
+    const ordered_json& penetration = r.at("penetration");
+    const ordered_json& set = r.at("contact_set");
+    double largest = 0.0;
+    for (const auto& c : r.at("constraints")) {
+      const auto& f = c.at("force");
+      largest = std::max(largest, std::hypot(f[0].get<double>(), f[1].get<double>(), f[2].get<double>()));
+    }
+    out << padded(number(r.at("volume")), 14)
+        << padded(r.at("distance").is_null() ? "-" : number(r.at("distance")), 14)
+        << padded(penetration.is_null() ? "-" : number(penetration.at("depth")), 14)
+        << padded(set.is_null() ? "-" : std::to_string(set.at("dimension").get<int>()) + "D", 5)
+        << padded(std::to_string(r.at("constraints").size()), 13) << padded(number(largest), 17)
+        << r.at("fallbacks").get<std::uint64_t>() << '\n';
+  }
+}
+
 void write_totals(std::ostream& out, const ordered_json& results, const ordered_json& stats) {
   std::map<std::string, std::size_t> by_status;
   for (const auto& r : results) ++by_status[r.at("status").get<std::string>()];
@@ -91,9 +124,14 @@ void write_totals(std::ostream& out, const ordered_json& results, const ordered_
 }  // namespace
 
 void write_pairs_summary(std::ostream& out, const ordered_json& document) {
-  out << "policy " << document.at("policy").get<std::string>() << ", demarcation "
-      << document.at("demarcation").get<std::string>() << "\n\n";
-  write_table(out, document.at("results"));
+  out << "policy " << document.at("policy").get<std::string>();
+  if (document.contains("demarcation")) {
+    out << ", demarcation " << document.at("demarcation").get<std::string>() << "\n\n";
+    write_table(out, document.at("results"));
+  } else {
+    out << ", 3D\n\n";
+    write_table3(out, document.at("results"));
+  }
   out << '\n';
   write_totals(out, document.at("results"), document.at("stats"));
 }

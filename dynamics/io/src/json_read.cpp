@@ -155,6 +155,44 @@ std::vector<kernel::Point2> JsonReader::polygon(const json& value, const std::st
   return vertices;
 }
 
+PolyhedronSpec JsonReader::polyhedron(const json& value, const std::string& path,
+                                      std::string_view expected) const {
+  static constexpr JsonField fields[] = {
+      {"vertices", true, "an array of [x, y, z] vertices, m"},
+      {"faces", true, "an array of faces, each an array of vertex indices counter-clockwise seen from outside"},
+  };
+  check_object(value, path, expected, fields);
+  PolyhedronSpec spec;
+  const json& vertices = value.at("vertices");
+  const std::string vertices_path = json_child(path, "vertices");
+  if (!vertices.is_array()) fail_expected(vertices_path, json_field(fields, "vertices").expected, vertices);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const json& v = vertices[i];
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number()) {
+      fail_expected(json_element(vertices_path, i), "a vertex, an [x, y, z] triple of numbers", v);
+    }
+    spec.vertices.push_back({v[0].get<double>(), v[1].get<double>(), v[2].get<double>()});
+  }
+  const json& faces = value.at("faces");
+  const std::string faces_path = json_child(path, "faces");
+  if (!faces.is_array()) fail_expected(faces_path, json_field(fields, "faces").expected, faces);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const json& face = faces[f];
+    const std::string face_path = json_element(faces_path, f);
+    if (!face.is_array()) fail_expected(face_path, "a face, an array of vertex indices", face);
+    std::vector<std::uint32_t>& loop = spec.faces.emplace_back();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const json& index = face[k];
+      const bool valid = index.is_number_unsigned()
+                             ? index.get<std::uint64_t>() <= std::numeric_limits<std::uint32_t>::max()
+                             : index.is_number_integer() && index.get<std::int64_t>() >= 0;
+      if (!valid) fail_expected(json_element(face_path, k), "a vertex index, an integer >= 0", index);
+      loop.push_back(static_cast<std::uint32_t>(index.get<std::uint64_t>()));
+    }
+  }
+  return spec;
+}
+
 void UniqueIds::add(const JsonReader& reader, const std::string& array_path, std::size_t index,
                     const std::string& id) {
   const auto [it, inserted] = first_index_.emplace(id, index);

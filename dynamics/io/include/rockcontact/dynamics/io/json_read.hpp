@@ -84,6 +84,11 @@ class JsonReader {
   // An array of [x, y] vertices (each element checked; the polygon itself is not validated).
   std::vector<kernel::Point2> polygon(const nlohmann::json& value, const std::string& path,
                                       std::string_view expected) const;
+  // An object {"vertices": [[x, y, z], ...], "faces": [[i, j, k, ...], ...]} with vertex
+  // indices that are non-negative integers (each element checked; the polyhedron itself, index
+  // ranges included, is validated by kernel::ConvexPolyhedron::make).
+  PolyhedronSpec polyhedron(const nlohmann::json& value, const std::string& path,
+                            std::string_view expected) const;
 
   // A string that `parse` accepts (one of a fixed set of names).
   template <class Choice>
