@@ -113,6 +113,82 @@ static void check_friction(void) {
   rockcontact_evaluator_destroy(contact);
 }
 
+/* 3D: a 0.5 m cube pressed d = 2^-10 m into the top of a unit cube (all coordinates dyadic, so
+ * every result is exact or one rounding away): overlap, intersection volume 0.25 d, penetration d
+ * straight up, four vertex-face constraints at the small cube's base corners with gap -d and
+ * force kn d up on b; then lifted by 2^-3 m: separate at distance 2^-3 - d, constraints only
+ * within the tolerance; then the error paths. */
+static void check_3d(void) {
+  const double d = 1.0 / 1024.0, kn = 1.0e9;
+  const double a_xyz[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  double b_xyz[24];
+  const int32_t sizes[] = {4, 4, 4, 4, 4, 4};
+  const int32_t faces[] = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+  int32_t inverted[24];
+  rockcontact_params3d params;
+  rockcontact_evaluator3d* contact = NULL;
+  rockcontact_pair3d_result r;
+  rockcontact_constraint3d c[8];
+  double corners[3 * 8];
+  int32_t count = -1;
+  int k;
+
+  for (k = 0; k < 8; ++k) {
+    b_xyz[3 * k] = 0.25 + 0.5 * a_xyz[3 * k];
+    b_xyz[3 * k + 1] = 0.25 + 0.5 * a_xyz[3 * k + 1];
+    b_xyz[3 * k + 2] = 1.0 - d + 0.5 * a_xyz[3 * k + 2];
+  }
+  rockcontact_default_params3d(&params);
+  check(params.kn == 1.0e9 && params.tolerance == 0.0 && params.policy == ROCKCONTACT_POLICY_FILTERED,
+        "3d: default params");
+  params.tolerance = 0.25;
+  check(rockcontact_evaluator3d_create(&params, &contact) == ROCKCONTACT_OK, "3d: create");
+  check(rockcontact_evaluate_pair3d(contact, a_xyz, 8, sizes, faces, 6, b_xyz, 8, sizes, faces, 6, &r) ==
+            ROCKCONTACT_OK,
+        "3d: evaluate");
+  check(r.status == ROCKCONTACT_OVERLAP && close_to(r.volume, 0.25 * d) && close_to(r.depth, d) &&
+            r.normal[0] == 0.0 && r.normal[1] == 0.0 && r.normal[2] == 1.0 && r.distance == -1.0 &&
+            r.contact_set_dimension == -1 && r.contact_set_count == 0,
+        "3d: overlap, volume d/4, penetration d up");
+  check(r.constraint_count == 4, "3d: four constraints");
+  check(rockcontact_pair3d_constraints(contact, NULL, 0, &count) == ROCKCONTACT_ERROR_INVALID_ARGUMENT &&
+            count == 4,
+        "3d: constraint count asked with capacity 0");
+  check(rockcontact_pair3d_constraints(contact, c, 8, &count) == ROCKCONTACT_OK && count == 4, "3d: constraints");
+  for (k = 0; k < 4; ++k) {
+    check(c[k].type == ROCKCONTACT_VERTEX_FACE && c[k].normal[2] == 1.0 && close_to(c[k].gap, -d) &&
+              close_to(c[k].force[2], kn * d) && c[k].force[0] == 0.0 && c[k].point_a[2] == 1.0 &&
+              c[k].point_b[2] == 1.0 - d,
+          "3d: vertex-face constraint at a base corner, gap -d, force kn d");
+  }
+  for (k = 0; k < 8; ++k) b_xyz[3 * k + 2] += 0.125;
+  check(rockcontact_evaluate_pair3d(contact, a_xyz, 8, sizes, faces, 6, b_xyz, 8, sizes, faces, 6, &r) ==
+                ROCKCONTACT_OK &&
+            r.status == ROCKCONTACT_SEPARATE && close_to(r.distance, 0.125 - d) && r.constraint_count == 4,
+        "3d: separate at 1/8 - d, constraints within the tolerance");
+  check(rockcontact_pair3d_contact_set(contact, corners, 8, &count) == ROCKCONTACT_OK && count == 0,
+        "3d: no contact set when separate");
+
+  for (k = 0; k < 24; ++k) inverted[k] = faces[k];
+  inverted[1] = 1, inverted[3] = 3; /* the bottom 0 3 2 1 reversed: 0 1 2 3, clockwise from outside */
+  check(rockcontact_evaluate_pair3d(contact, a_xyz, 8, sizes, inverted, 6, b_xyz, 8, sizes, faces, 6, &r) ==
+                ROCKCONTACT_ERROR_INVALID_POLYHEDRON &&
+            message_has("polyhedron 'a'") && message_has("face"),
+        "3d: a face the wrong way round is refused, naming the block and face");
+  check(rockcontact_evaluate_pair3d(contact, a_xyz, -1, sizes, faces, 6, b_xyz, 8, sizes, faces, 6, &r) ==
+                ROCKCONTACT_ERROR_INVALID_ARGUMENT &&
+            message_has("polyhedron a"),
+        "3d: a negative count refused");
+  rockcontact_evaluator3d_destroy(contact);
+  params.tolerance = -1.0;
+  contact = NULL;
+  check(rockcontact_evaluator3d_create(&params, &contact) == ROCKCONTACT_ERROR_INVALID_ARGUMENT &&
+            contact == NULL && message_has("tolerance"),
+        "3d: a negative tolerance refused");
+  check(strcmp(rockcontact_error_string(ROCKCONTACT_ERROR_INVALID_POLYHEDRON), "invalid polyhedron") == 0,
+        "3d: error string");
+}
+
 int main(void) {
   const double kn = 2.0e7, H = 0.5, scale = kn / H;
   const double a_xy[] = {-1.0, -0.5, 1.0, -0.5, 1.0, 0.5, -1.0, 0.5};
@@ -220,6 +296,7 @@ int main(void) {
         "error string");
 
   check_friction();
+  check_3d();
 
   if (failures == 0) printf("c_api_test: all checks passed\n");
   return failures == 0 ? 0 : 1;

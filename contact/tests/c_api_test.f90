@@ -6,8 +6,10 @@
 ! a 1 m square pressed d = 2^-10 m into a 4 m x 1 m base (normal force kn (2 d - d^2) / H, contact
 ! length 1 + d: closed forms, see pair_friction_test.cpp) pushed along the face by 2^-13 m steps:
 ! stick at -kt push, slide at F tan 30 deg dissipating limit x push, reset on separation, a
-! refused kt; to 1e-10 relative (a handful of roundings on the 1e-12 force). Stops with a
-! non-zero code on a failure.
+! refused kt; to 1e-10 relative (a handful of roundings on the 1e-12 force). Then 3D: a 0.5 m
+! cube pressed d = 2^-10 m into a unit cube (dyadic coordinates: exact or one rounding off):
+! overlap, volume d/4, depth d upwards, four vertex-face constraints with gap -d and force kn d.
+! Stops with a non-zero code on a failure.
 program c_api_test
   use, intrinsic :: iso_c_binding, only: c_ptr, c_double, c_int, c_int32_t
   use rockcontact
@@ -68,6 +70,7 @@ program c_api_test
   end do
 
   call check_friction()
+  call check_3d()
 
   if (failures > 0) error stop 1
   print '(a)', 'c_api_test (Fortran): all checks passed'
@@ -140,6 +143,42 @@ contains
     call check(code == ROCKCONTACT_OK .and. all(t%force == 0.0_c_double) .and. state%in_contact == 0 .and. &
                all(state%displacement == 0.0_c_double), 'friction: separation resets the state')
     call rockcontact_evaluator_destroy(contact)
+  end subroutine
+
+  subroutine check_3d()
+    real(c_double), parameter :: d = 1.0_c_double / 1024.0_c_double
+    real(c_double) :: a_xyz(24), b_xyz(24)
+    integer(c_int32_t), parameter :: sizes(6) = [4, 4, 4, 4, 4, 4]
+    integer(c_int32_t), parameter :: faces(24) = [0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, &
+                                                  2, 3, 7, 6, 3, 0, 4, 7]
+    type(rockcontact_params3d) :: params3
+    type(rockcontact_pair3d_result) :: r3
+    type(rockcontact_constraint3d) :: c(8)
+    type(c_ptr) :: contact3
+    integer(c_int32_t) :: count
+    integer :: k
+    a_xyz = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]
+    do k = 0, 7
+      b_xyz(3 * k + 1) = 0.25_c_double + 0.5_c_double * a_xyz(3 * k + 1)
+      b_xyz(3 * k + 2) = 0.25_c_double + 0.5_c_double * a_xyz(3 * k + 2)
+      b_xyz(3 * k + 3) = 1.0_c_double - d + 0.5_c_double * a_xyz(3 * k + 3)
+    end do
+    call rockcontact_default_params3d(params3)
+    call check(params3%kn == 1.0e9_c_double .and. params3%policy == ROCKCONTACT_POLICY_FILTERED, &
+               '3d: default parameters')
+    call check(rockcontact_evaluator3d_create(params3, contact3) == ROCKCONTACT_OK, '3d: create')
+    call check(rockcontact_evaluate_pair3d(contact3, a_xyz, 8_c_int32_t, sizes, faces, 6_c_int32_t, &
+                                           b_xyz, 8_c_int32_t, sizes, faces, 6_c_int32_t, r3) &
+               == ROCKCONTACT_OK, '3d: evaluate')
+    call check(r3%status == ROCKCONTACT_OVERLAP .and. close_to(r3%volume, 0.25_c_double * d) .and. &
+               close_to(r3%depth, d) .and. r3%normal(3) == 1.0_c_double, '3d: volume d/4, depth d up')
+    call check(rockcontact_pair3d_constraints(contact3, c, 8_c_int32_t, count) == ROCKCONTACT_OK &
+               .and. count == 4 .and. r3%constraint_count == 4, '3d: four constraints')
+    do k = 1, 4
+      call check(c(k)%type == ROCKCONTACT_VERTEX_FACE .and. close_to(c(k)%gap, -d) .and. &
+                 close_to(c(k)%force(3), params3%kn * d), '3d: vertex-face, gap -d, force kn d')
+    end do
+    call rockcontact_evaluator3d_destroy(contact3)
   end subroutine
 
   logical function near(actual, expected, scale)

@@ -30,7 +30,8 @@ module rockcontact
   integer(c_int), parameter, public :: ROCKCONTACT_OK = 0, ROCKCONTACT_ERROR_INVALID_ARGUMENT = 1, &
                                        ROCKCONTACT_ERROR_INVALID_POLYGON = 2, &
                                        ROCKCONTACT_ERROR_OUT_OF_MEMORY = 3, &
-                                       ROCKCONTACT_ERROR_INTERNAL = 4
+                                       ROCKCONTACT_ERROR_INTERNAL = 4, &
+                                       ROCKCONTACT_ERROR_INVALID_POLYHEDRON = 5
   integer(c_int32_t), parameter, public :: ROCKCONTACT_POLICY_FLOAT = 0, &
                                            ROCKCONTACT_POLICY_FILTERED = 1, &
                                            ROCKCONTACT_POLICY_EXACT = 2, &
@@ -41,6 +42,8 @@ module rockcontact
                                            ROCKCONTACT_OVERLAP = 2
   integer(c_int32_t), parameter, public :: ROCKCONTACT_FRICTION_ELASTOPLASTIC = 0, &
                                            ROCKCONTACT_FRICTION_PAPER = 1
+  integer(c_int32_t), parameter, public :: ROCKCONTACT_VERTEX_FACE = 0, ROCKCONTACT_EDGE_EDGE = 1, &
+                                           ROCKCONTACT_VERTEX_EDGE = 2, ROCKCONTACT_VERTEX_VERTEX = 3
 
   type, bind(C), public :: rockcontact_params
     real(c_double) :: kn                   ! Pa, > 0
@@ -85,6 +88,43 @@ module rockcontact
     integer(c_int32_t) :: sliding  ! 1 when |force| is at the Coulomb limit
     integer(c_int32_t) :: reserved ! explicit padding
   end type
+
+  ! 3D (rockcontact.h): polyhedra in world coordinates, xyz(3 * n) = x1, y1, z1, x2, ...;
+  ! face_sizes(f) vertices per face, faces = the faces' 0-based vertex indices one face after
+  ! the other, each counter-clockwise seen from outside.
+  type, bind(C), public :: rockcontact_params3d
+    real(c_double) :: kn                ! N/m per constraint, > 0
+    real(c_double) :: tolerance         ! m, >= 0
+    integer(c_int32_t) :: policy        ! ROCKCONTACT_POLICY_*
+    integer(c_int32_t) :: reserved      ! explicit padding; ignored
+  end type
+
+  type, bind(C), public :: rockcontact_pair3d_result
+    integer(c_int32_t) :: status                 ! ROCKCONTACT_SEPARATE, _TOUCH or _OVERLAP
+    integer(c_int32_t) :: constraint_count
+    real(c_double) :: volume                     ! of the intersection, m^3
+    real(c_double) :: distance                   ! m when separate, else -1
+    real(c_double) :: depth                      ! penetration depth, m (overlap)
+    real(c_double) :: normal(3)                  ! unit, from a towards b (overlap)
+    integer(c_int32_t) :: contact_set_dimension  ! 0, 1, 2 when touching, else -1
+    integer(c_int32_t) :: contact_set_count
+    integer(c_int64_t) :: predicates
+    integer(c_int64_t) :: fallbacks
+  end type
+
+  type, bind(C), public :: rockcontact_constraint3d
+    integer(c_int32_t) :: type        ! ROCKCONTACT_VERTEX_FACE, ...
+    integer(c_int32_t) :: reserved
+    real(c_double) :: point_a(3)      ! m
+    real(c_double) :: point_b(3)      ! m
+    real(c_double) :: normal(3)       ! unit, from a towards b
+    real(c_double) :: gap             ! m, negative = penetration
+    real(c_double) :: force(3)        ! penalty force on b, N
+  end type
+
+  public :: rockcontact_default_params3d, rockcontact_evaluator3d_create, &
+            rockcontact_evaluator3d_destroy, rockcontact_evaluate_pair3d, &
+            rockcontact_pair3d_constraints, rockcontact_pair3d_contact_set
 
   public :: rockcontact_default_params, rockcontact_evaluator_create, &
             rockcontact_evaluator_destroy, rockcontact_evaluate_pair, &
@@ -146,6 +186,57 @@ module rockcontact
       real(c_double), intent(in) :: increment(2)
       type(rockcontact_friction_state), intent(inout) :: state
       type(rockcontact_friction_result), intent(out) :: result
+      integer(c_int) :: code
+    end function
+
+    subroutine rockcontact_default_params3d(params) bind(C, name="rockcontact_default_params3d")
+      import :: rockcontact_params3d
+      type(rockcontact_params3d), intent(out) :: params
+    end subroutine
+
+    function rockcontact_evaluator3d_create(params, evaluator) result(code) &
+        bind(C, name="rockcontact_evaluator3d_create")
+      import :: rockcontact_params3d, c_ptr, c_int
+      type(rockcontact_params3d), intent(in) :: params
+      type(c_ptr), intent(out) :: evaluator
+      integer(c_int) :: code
+    end function
+
+    subroutine rockcontact_evaluator3d_destroy(evaluator) bind(C, name="rockcontact_evaluator3d_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: evaluator
+    end subroutine
+
+    function rockcontact_evaluate_pair3d(evaluator, a_xyz, a_count, a_face_sizes, a_faces, &
+                                         a_face_count, b_xyz, b_count, b_face_sizes, b_faces, &
+                                         b_face_count, result) result(code) &
+        bind(C, name="rockcontact_evaluate_pair3d")
+      import :: rockcontact_pair3d_result, c_ptr, c_int, c_int32_t, c_double
+      type(c_ptr), value :: evaluator
+      real(c_double), intent(in) :: a_xyz(*), b_xyz(*)
+      integer(c_int32_t), intent(in) :: a_face_sizes(*), a_faces(*), b_face_sizes(*), b_faces(*)
+      integer(c_int32_t), value :: a_count, a_face_count, b_count, b_face_count
+      type(rockcontact_pair3d_result), intent(out) :: result
+      integer(c_int) :: code
+    end function
+
+    function rockcontact_pair3d_constraints(evaluator, constraints, capacity, count) result(code) &
+        bind(C, name="rockcontact_pair3d_constraints")
+      import :: rockcontact_constraint3d, c_ptr, c_int, c_int32_t
+      type(c_ptr), value :: evaluator
+      type(rockcontact_constraint3d), intent(out) :: constraints(*)
+      integer(c_int32_t), value :: capacity
+      integer(c_int32_t), intent(out) :: count
+      integer(c_int) :: code
+    end function
+
+    function rockcontact_pair3d_contact_set(evaluator, xyz, capacity, count) result(code) &
+        bind(C, name="rockcontact_pair3d_contact_set")
+      import :: c_ptr, c_int, c_int32_t, c_double
+      type(c_ptr), value :: evaluator
+      real(c_double), intent(out) :: xyz(*)
+      integer(c_int32_t), value :: capacity
+      integer(c_int32_t), intent(out) :: count
       integer(c_int) :: code
     end function
 

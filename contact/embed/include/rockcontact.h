@@ -55,7 +55,9 @@ typedef enum rockcontact_error {
                                              a parameter out of range */
   ROCKCONTACT_ERROR_INVALID_POLYGON = 2,  /* not a strictly convex CCW polygon (after its pose) */
   ROCKCONTACT_ERROR_OUT_OF_MEMORY = 3,
-  ROCKCONTACT_ERROR_INTERNAL = 4          /* a bug: please report it with the message */
+  ROCKCONTACT_ERROR_INTERNAL = 4,         /* a bug: please report it with the message */
+  ROCKCONTACT_ERROR_INVALID_POLYHEDRON = 5 /* 3D: not a valid convex polyhedron (the message names
+                                              the block "a" or "b", the face and the vertex) */
 } rockcontact_error;
 
 enum {
@@ -190,6 +192,98 @@ const char* rockcontact_last_error(void);
 
 /* A short fixed description of an error code, e.g. "invalid polygon". */
 const char* rockcontact_error_string(rockcontact_error code);
+
+/* ---- 3D: convex polyhedra (rockcontact/contact/generalized3d/pair_contact3d.hpp) ----------
+ *
+ *   rockcontact_params3d params;
+ *   rockcontact_default_params3d(&params);           kn = 1e9 N/m, tolerance 0, Filtered
+ *   rockcontact_evaluator3d* contact;
+ *   rockcontact_evaluator3d_create(&params, &contact);
+ *   rockcontact_pair3d_result r;
+ *   rockcontact_evaluate_pair3d(contact, a_xyz, a_count, a_face_sizes, a_faces, a_face_count,
+ *                               b_xyz, ..., &r);
+ *   rockcontact_constraint3d c[16]; int32_t n;
+ *   rockcontact_pair3d_constraints(contact, c, 16, &n);   the r.constraint_count constraints
+ *   rockcontact_evaluator3d_destroy(contact);
+ *
+ * A polyhedron is given in world coordinates, m: xyz holds 3 * count doubles x0, y0, z0, x1, ...;
+ * face_sizes[f] is the number of vertices of face f and faces lists the faces' vertex indices
+ * (0-based) one face after the other, each face counter-clockwise seen from outside. Units: SI
+ * (lengths m, volumes m³, kn N/m per constraint, forces N). */
+typedef struct rockcontact_params3d {
+  double kn;         /* normal penalty, N/m per constraint, > 0 */
+  double tolerance;  /* m, >= 0: separate pairs closer than this get their constraints */
+  int32_t policy;    /* ROCKCONTACT_POLICY_* */
+  int32_t reserved;  /* explicit padding; ignored */
+} rockcontact_params3d;
+
+enum {
+  ROCKCONTACT_VERTEX_FACE = 0,  /* constraint types (seed 001 §2) */
+  ROCKCONTACT_EDGE_EDGE = 1,
+  ROCKCONTACT_VERTEX_EDGE = 2,
+  ROCKCONTACT_VERTEX_VERTEX = 3
+};
+
+typedef struct rockcontact_pair3d_result {
+  int32_t status;                /* ROCKCONTACT_SEPARATE, _TOUCH or _OVERLAP */
+  int32_t constraint_count;      /* constraints, read with rockcontact_pair3d_constraints */
+  double volume;                 /* of the intersection, m³; 0 unless overlap */
+  double distance;               /* m when separate, else -1 */
+  double depth;                  /* penetration depth, m, when overlapping, else 0 */
+  double normal[3];              /* unit direction translating b by depth makes the pair touch
+                                    (from a towards b); 0 unless overlap */
+  int32_t contact_set_dimension; /* 0, 1 or 2 when touching, else -1 */
+  int32_t contact_set_count;     /* corners, read with rockcontact_pair3d_contact_set */
+  int64_t predicates;            /* predicate calls spent on the pair */
+  int64_t fallbacks;             /* of which re-evaluated exactly */
+} rockcontact_pair3d_result;
+
+typedef struct rockcontact_constraint3d {
+  int32_t type;        /* ROCKCONTACT_VERTEX_FACE, _EDGE_EDGE, _VERTEX_EDGE or _VERTEX_VERTEX */
+  int32_t reserved;    /* explicit padding; written as 0 */
+  double point_a[3];   /* contact point on a, m */
+  double point_b[3];   /* contact point on b, m */
+  double normal[3];    /* unit normal of the contact plane, from a towards b */
+  double gap;          /* (point_b - point_a) . normal, m; negative = penetration */
+  double force[3];     /* penalty force on b, N: kn max(0, -gap) normal; on a it is -force */
+} rockcontact_constraint3d;
+
+typedef struct rockcontact_evaluator3d rockcontact_evaluator3d; /* opaque */
+
+/* kn = 1e9 N/m per constraint, tolerance 0, Filtered. */
+void rockcontact_default_params3d(rockcontact_params3d* params);
+
+/* Creates a 3D evaluator; *out is set only on success. Fails with INVALID_ARGUMENT on a null
+ * pointer, an unknown policy, kn not finite and > 0 or tolerance not finite and >= 0. */
+rockcontact_error rockcontact_evaluator3d_create(const rockcontact_params3d* params,
+                                                 rockcontact_evaluator3d** out);
+
+/* Destroys a 3D evaluator; a null pointer is ignored. */
+void rockcontact_evaluator3d_destroy(rockcontact_evaluator3d* evaluator);
+
+/* The contact of polyhedron a with polyhedron b (world coordinates, see above). Fails with
+ * INVALID_POLYHEDRON when a block is not a valid convex polyhedron, INVALID_ARGUMENT on a null
+ * pointer or a negative count. */
+rockcontact_error rockcontact_evaluate_pair3d(rockcontact_evaluator3d* evaluator,
+                                              const double* a_xyz, int32_t a_count,
+                                              const int32_t* a_face_sizes, const int32_t* a_faces,
+                                              int32_t a_face_count, const double* b_xyz,
+                                              int32_t b_count, const int32_t* b_face_sizes,
+                                              const int32_t* b_faces, int32_t b_face_count,
+                                              rockcontact_pair3d_result* result);
+
+/* The constraints of the evaluator's last successful rockcontact_evaluate_pair3d. Sets *count
+ * and, when it is at most `capacity`, writes them to out; otherwise writes nothing to out and
+ * fails with INVALID_ARGUMENT (ask with capacity 0 first; out may then be null). */
+rockcontact_error rockcontact_pair3d_constraints(const rockcontact_evaluator3d* evaluator,
+                                                 rockcontact_constraint3d* out, int32_t capacity,
+                                                 int32_t* count);
+
+/* The corners of the contact set of the last successful rockcontact_evaluate_pair3d (none
+ * unless it said ROCKCONTACT_TOUCH), as x0, y0, z0, x1, ... in xyz (3 * capacity doubles); the
+ * capacity protocol of rockcontact_pair3d_constraints. */
+rockcontact_error rockcontact_pair3d_contact_set(const rockcontact_evaluator3d* evaluator,
+                                                 double* xyz, int32_t capacity, int32_t* count);
 
 #ifdef __cplusplus
 }

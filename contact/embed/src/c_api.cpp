@@ -1,5 +1,5 @@
-// The C API (rockcontact.h) over PairEvaluator (pair_contact.hpp) and evaluate_pair_friction
-// (pair_friction.hpp). Every entry point catches
+// The C API (rockcontact.h) over PairEvaluator (pair_contact.hpp), evaluate_pair_friction
+// (pair_friction.hpp) and, in 3D, evaluate_pair3d (generalized3d/pair_contact3d.hpp). Every entry point catches
 // every exception and turns it into an error code plus a per-thread message: nothing unwinds
 // into C or Fortran frames.
 
@@ -11,8 +11,10 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "rockcontact/contact/embed/pair_contact.hpp"
+#include "rockcontact/contact/generalized3d/pair_contact3d.hpp"
 #include "rockcontact/contact/embed/pair_friction.hpp"
 #include "rockcontact/kernel/2d/convex_polygon.hpp"
 #include "rockcontact/version.hpp"
@@ -22,9 +24,18 @@ static_assert(sizeof(rockcontact_pair_result) == 80);
 static_assert(sizeof(rockcontact_friction_params) == 32);
 static_assert(sizeof(rockcontact_friction_state) == 56);
 static_assert(sizeof(rockcontact_friction_result) == 32);
+static_assert(sizeof(rockcontact_params3d) == 24);
+static_assert(sizeof(rockcontact_pair3d_result) == 80);
+static_assert(sizeof(rockcontact_constraint3d) == 112);
 
 struct rockcontact_evaluator {
   rockcontact::PairEvaluator pairs;
+};
+
+struct rockcontact_evaluator3d {
+  rockcontact::kernel::PolicyKind policy;
+  rockcontact::contact::Pair3dParams params;
+  rockcontact::contact::Pair3dResult result;
 };
 
 namespace {
@@ -42,6 +53,8 @@ rockcontact_error from_exception() {
     throw;
   } catch (const rockcontact::kernel::InvalidPolygon& e) {
     return fail(ROCKCONTACT_ERROR_INVALID_POLYGON, e.what());
+  } catch (const rockcontact::kernel::InvalidPolyhedron& e) {
+    return fail(ROCKCONTACT_ERROR_INVALID_POLYHEDRON, e.what());
   } catch (const std::invalid_argument& e) {
     return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, e.what());
   } catch (const std::bad_alloc&) {
@@ -53,21 +66,26 @@ rockcontact_error from_exception() {
   }
 }
 
+rockcontact::kernel::PolicyKind to_policy(int32_t policy) {
+  namespace rk = rockcontact::kernel;
+  switch (policy) {
+    case ROCKCONTACT_POLICY_FLOAT: return rk::PolicyKind::float_;
+    case ROCKCONTACT_POLICY_FILTERED: return rk::PolicyKind::filtered;
+    case ROCKCONTACT_POLICY_EXACT: return rk::PolicyKind::exact;
+    case ROCKCONTACT_POLICY_CHECKED: return rk::PolicyKind::checked;
+    default:
+      throw std::invalid_argument("params.policy: expected ROCKCONTACT_POLICY_FLOAT (0), _FILTERED "
+                                  "(1), _EXACT (2) or _CHECKED (3), got " + std::to_string(policy));
+  }
+}
+
 rockcontact::PairContactParams to_cpp(const rockcontact_params& p) {
   namespace rk = rockcontact::kernel;
   rockcontact::PairContactParams out;
   out.kn = p.kn;
   out.H = p.H;
   out.small_edge_fraction = p.small_edge_fraction;
-  switch (p.policy) {
-    case ROCKCONTACT_POLICY_FLOAT: out.policy = rk::PolicyKind::float_; break;
-    case ROCKCONTACT_POLICY_FILTERED: out.policy = rk::PolicyKind::filtered; break;
-    case ROCKCONTACT_POLICY_EXACT: out.policy = rk::PolicyKind::exact; break;
-    case ROCKCONTACT_POLICY_CHECKED: out.policy = rk::PolicyKind::checked; break;
-    default:
-      throw std::invalid_argument("params.policy: expected ROCKCONTACT_POLICY_FLOAT (0), _FILTERED "
-                                  "(1), _EXACT (2) or _CHECKED (3), got " + std::to_string(p.policy));
-  }
+  out.policy = to_policy(p.policy);
   switch (p.demarcation) {
     case ROCKCONTACT_DEMARCATION_EXACT: out.demarcation = rk::Demarcation::exact; break;
     case ROCKCONTACT_DEMARCATION_PAPER: out.demarcation = rk::Demarcation::paper; break;
@@ -140,6 +158,62 @@ rockcontact::Pose2 pose(const double* p) {
   return p == nullptr ? rockcontact::Pose2{} : rockcontact::Pose2{p[0], p[1], p[2]};
 }
 
+// A polyhedron argument, after the checks the kernel cannot make on raw pointers; the kernel
+// validates the rest (index ranges, closure, convexity) and names the face and vertex.
+rockcontact::kernel::ConvexPolyhedron polyhedron(const char* name, const double* xyz, int32_t count,
+                                                 const int32_t* face_sizes, const int32_t* faces,
+                                                 int32_t face_count) {
+  const std::string block = std::string("polyhedron ") + name;
+  if (count < 0 || face_count < 0) throw std::invalid_argument(block + ": negative vertex or face count");
+  if ((xyz == nullptr && count > 0) || ((face_sizes == nullptr || faces == nullptr) && face_count > 0)) {
+    throw std::invalid_argument(block + ": null vertex or face array");
+  }
+  std::vector<rockcontact::kernel::Point3> vertices(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  std::vector<rockcontact::kernel::ConvexPolyhedron::Face> loops(static_cast<std::size_t>(face_count));
+  std::size_t next = 0;
+  for (std::size_t f = 0; f < loops.size(); ++f) {
+    if (face_sizes[f] < 0) throw std::invalid_argument(block + ": face " + std::to_string(f) + " has a negative size");
+    for (int32_t k = 0; k < face_sizes[f]; ++k, ++next) {
+      if (faces[next] < 0) {
+        throw std::invalid_argument(block + ": face " + std::to_string(f) + " has a negative vertex index");
+      }
+      loops[f].push_back(static_cast<std::uint32_t>(faces[next]));
+    }
+  }
+  return rockcontact::kernel::ConvexPolyhedron::make(name, std::move(vertices), std::move(loops));
+}
+
+int32_t to_c(rockcontact::kernel::ConstraintType type) {
+  using T = rockcontact::kernel::ConstraintType;
+  switch (type) {
+    case T::vertex_face: return ROCKCONTACT_VERTEX_FACE;
+    case T::edge_edge: return ROCKCONTACT_EDGE_EDGE;
+    case T::vertex_edge: return ROCKCONTACT_VERTEX_EDGE;
+    case T::vertex_vertex: return ROCKCONTACT_VERTEX_VERTEX;
+  }
+  return -1;
+}
+
+void copy3(const rockcontact::kernel::Point3& p, double* out) {
+  out[0] = p.x;
+  out[1] = p.y;
+  out[2] = p.z;
+}
+
+// The capacity protocol of the array getters: *count always, the items only when they fit.
+template <class Write>
+rockcontact_error write_array(const char* function, std::size_t size, int32_t capacity, int32_t* count,
+                              Write write) {
+  *count = static_cast<int32_t>(size);
+  if (*count > capacity) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + std::to_string(size) +
+                                                        " items, capacity is " + std::to_string(capacity));
+  }
+  for (std::size_t k = 0; k < size; ++k) write(k);
+  return ROCKCONTACT_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -208,17 +282,10 @@ rockcontact_error rockcontact_intersection_polygon(const rockcontact_evaluator* 
     return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_intersection_polygon: null argument");
   }
   const std::span<const rockcontact::kernel::Point2> ip = evaluator->pairs.intersection_polygon();
-  *count = static_cast<int32_t>(ip.size());
-  if (*count > capacity) {
-    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT,
-                "rockcontact_intersection_polygon: the polygon has " + std::to_string(*count) +
-                    " vertices, capacity is " + std::to_string(capacity));
-  }
-  for (std::size_t k = 0; k < ip.size(); ++k) {
+  return write_array("rockcontact_intersection_polygon", ip.size(), capacity, count, [&](std::size_t k) {
     xy[2 * k] = ip[k].x;
     xy[2 * k + 1] = ip[k].y;
-  }
-  return ROCKCONTACT_OK;
+  });
 }
 
 void rockcontact_default_friction_params(rockcontact_friction_params* params) {
@@ -257,6 +324,104 @@ rockcontact_error rockcontact_evaluate_friction(const rockcontact_friction_param
   }
 }
 
+void rockcontact_default_params3d(rockcontact_params3d* params) {
+  if (params == nullptr) return;
+  const rockcontact::contact::Pair3dParams d;
+  params->kn = d.kn;
+  params->tolerance = d.tolerance;
+  params->policy = ROCKCONTACT_POLICY_FILTERED;
+  params->reserved = 0;
+}
+
+rockcontact_error rockcontact_evaluator3d_create(const rockcontact_params3d* params,
+                                                 rockcontact_evaluator3d** out) {
+  last_error.clear();
+  if (params == nullptr || out == nullptr) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_evaluator3d_create: null argument");
+  }
+  try {
+    rockcontact::contact::Pair3dParams cpp;
+    cpp.kn = params->kn;
+    cpp.tolerance = params->tolerance;
+    rockcontact::contact::check_params(cpp);
+    *out = new rockcontact_evaluator3d{to_policy(params->policy), cpp, {}};
+    return ROCKCONTACT_OK;
+  } catch (...) {
+    return from_exception();
+  }
+}
+
+void rockcontact_evaluator3d_destroy(rockcontact_evaluator3d* evaluator) { delete evaluator; }
+
+rockcontact_error rockcontact_evaluate_pair3d(rockcontact_evaluator3d* evaluator, const double* a_xyz,
+                                              int32_t a_count, const int32_t* a_face_sizes,
+                                              const int32_t* a_faces, int32_t a_face_count,
+                                              const double* b_xyz, int32_t b_count,
+                                              const int32_t* b_face_sizes, const int32_t* b_faces,
+                                              int32_t b_face_count, rockcontact_pair3d_result* result) {
+  last_error.clear();
+  if (evaluator == nullptr || result == nullptr) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_evaluate_pair3d: null argument");
+  }
+  try {
+    const auto a = polyhedron("a", a_xyz, a_count, a_face_sizes, a_faces, a_face_count);
+    const auto b = polyhedron("b", b_xyz, b_count, b_face_sizes, b_faces, b_face_count);
+    rockcontact::contact::Pair3dResult& r = evaluator->result;
+    rockcontact::kernel::with_policy(evaluator->policy, [&](auto policy) {
+      rockcontact::contact::evaluate_pair3d<decltype(policy)>(a, b, evaluator->params, r);
+    });
+    *result = rockcontact_pair3d_result{};
+    result->status = static_cast<int32_t>(r.status);
+    result->constraint_count = static_cast<int32_t>(r.constraints.size());
+    result->volume = r.volume;
+    result->distance = r.separation ? r.separation->distance : -1.0;
+    if (r.penetration) {
+      result->depth = r.penetration->depth;
+      copy3(r.penetration->normal, result->normal);
+    }
+    result->contact_set_dimension = r.contact_set ? r.contact_set->dimension : -1;
+    result->contact_set_count = r.contact_set ? static_cast<int32_t>(r.contact_set->vertices.size()) : 0;
+    result->predicates = static_cast<int64_t>(r.predicates);
+    result->fallbacks = static_cast<int64_t>(r.fallbacks);
+    return ROCKCONTACT_OK;
+  } catch (...) {
+    evaluator->result = {};
+    return from_exception();
+  }
+}
+
+rockcontact_error rockcontact_pair3d_constraints(const rockcontact_evaluator3d* evaluator,
+                                                 rockcontact_constraint3d* out, int32_t capacity,
+                                                 int32_t* count) {
+  last_error.clear();
+  if (evaluator == nullptr || count == nullptr || (out == nullptr && capacity > 0)) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_pair3d_constraints: null argument");
+  }
+  const auto& constraints = evaluator->result.constraints;
+  return write_array("rockcontact_pair3d_constraints", constraints.size(), capacity, count, [&](std::size_t k) {
+    const auto& c = constraints[k];
+    out[k].type = to_c(c.type);
+    out[k].reserved = 0;
+    copy3(c.point_cp, out[k].point_a);
+    copy3(c.point_tp, out[k].point_b);
+    copy3(c.normal, out[k].normal);
+    out[k].gap = c.gap;
+    copy3(rockcontact::contact::penalty_force(c, evaluator->params.kn), out[k].force);
+  });
+}
+
+rockcontact_error rockcontact_pair3d_contact_set(const rockcontact_evaluator3d* evaluator, double* xyz,
+                                                 int32_t capacity, int32_t* count) {
+  last_error.clear();
+  if (evaluator == nullptr || count == nullptr || (xyz == nullptr && capacity > 0)) {
+    return fail(ROCKCONTACT_ERROR_INVALID_ARGUMENT, "rockcontact_pair3d_contact_set: null argument");
+  }
+  const auto& set = evaluator->result.contact_set;
+  const std::size_t size = set ? set->vertices.size() : 0;
+  return write_array("rockcontact_pair3d_contact_set", size, capacity, count,
+                     [&](std::size_t k) { copy3(set->vertices[k], xyz + 3 * k); });
+}
+
 const char* rockcontact_last_error(void) { return last_error.c_str(); }
 
 const char* rockcontact_error_string(rockcontact_error code) {
@@ -266,6 +431,7 @@ const char* rockcontact_error_string(rockcontact_error code) {
     case ROCKCONTACT_ERROR_INVALID_POLYGON: return "invalid polygon";
     case ROCKCONTACT_ERROR_OUT_OF_MEMORY: return "out of memory";
     case ROCKCONTACT_ERROR_INTERNAL: return "internal error";
+    case ROCKCONTACT_ERROR_INVALID_POLYHEDRON: return "invalid polyhedron";
   }
   return "unknown error code";
 }
