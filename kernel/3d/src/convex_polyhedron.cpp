@@ -257,6 +257,12 @@ ConvexPolyhedron ConvexPolyhedron::make(std::string name, std::vector<Point3> ve
   out.facets_ = std::move(facets);
   out.input_face_ = std::move(input_face);
   out.edges_ = std::move(edges);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> facet_of;  // directed edge -> facet
+  for (std::size_t f = 0; f < out.facets_.size(); ++f) {
+    const Face& loop = out.facets_[f];
+    for (std::size_t k = 0; k < loop.size(); ++k) facet_of[{loop[k], loop[(k + 1) % loop.size()]}] = static_cast<std::uint32_t>(f);
+  }
+  for (const auto& [p, q] : out.edges_) out.edge_faces_.push_back({facet_of.at({p, q}), facet_of.at({q, p})});
   return out;
 }
 

@@ -12,6 +12,7 @@
 
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/core/policy_disagreement.hpp"
+#include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/testing/contact3d.hpp"
 #include "rockcontact/testing/seed.hpp"
@@ -181,4 +182,57 @@ BOOST_AUTO_TEST_CASE(random_tetrahedra_properties) {
   BOOST_TEST(verdicts[2] > 0);
   BOOST_TEST_MESSAGE("random tetrahedra: " << verdicts[0] << " separate, " << verdicts[1] << " touch, "
                                            << verdicts[2] << " overlap; Float wrong on " << float_wrong);
+}
+
+namespace {
+
+// The verdict over every candidate plane, no edge pair pruned: the definition the pruned
+// classify_overlap must reproduce (overlap.cpp).
+Overlap verdict_over_all_candidates(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
+  using rk::detail::Gap;
+  bool touching = false;
+  const auto weigh = [&](Gap gap) {
+    touching |= gap == Gap::zero;
+    return gap == Gap::positive;
+  };
+  for (const auto& face : a.faces()) {
+    if (weigh(rk::detail::face_gap<rk::Exact>(a, face, b))) return Overlap::separate;
+  }
+  for (const auto& face : b.faces()) {
+    if (weigh(rk::detail::face_gap<rk::Exact>(b, face, a))) return Overlap::separate;
+  }
+  for (const auto& ea : a.edges()) {
+    for (const auto& eb : b.edges()) {
+      if (weigh(rk::detail::edge_gap<rk::Exact>(a, ea, b, eb))) return Overlap::separate;
+    }
+  }
+  return touching ? Overlap::touch : Overlap::overlap;
+}
+
+}  // namespace
+
+// Pruning edge pairs on the Gauss map keeps exactly the verdict of all candidates: on the
+// contact3d pairs (every kind of touch, near-parallel faces, rotated cubes) and on random
+// dyadic tetrahedra, a third of them sharing a face, in both orders.
+BOOST_AUTO_TEST_CASE(gauss_map_pruning_keeps_the_verdict) {
+  for (const auto& pair : rockcontact::testing::contact3d_pairs()) {
+    BOOST_TEST_INFO(pair.id);
+    BOOST_TEST((rk::classify_overlap<rk::Filtered>(pair.cp, pair.tp) == verdict_over_all_candidates(pair.cp, pair.tp)));
+  }
+  std::mt19937_64 rng(rockcontact::testing::seed_for("gauss_map_pruning_keeps_the_verdict", 20261125));
+  std::uniform_int_distribution<int> grid(-8, 8);
+  const auto dyadic = [&] { return Point3{grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25}; };
+  int checked = 0;
+  while (checked < 2000) {
+    std::vector<Point3> va{dyadic(), dyadic(), dyadic(), dyadic()}, vb{dyadic(), dyadic(), dyadic(), dyadic()};
+    if (checked % 3 == 0) vb = {va[0], va[1], va[2], {2 * va[0].x - va[3].x, 2 * va[0].y - va[3].y, 2 * va[0].z - va[3].z}};
+    if (rk::orient3d<rk::Exact>(va[0], va[1], va[2], va[3]) == rk::Sign::zero ||
+        rk::orient3d<rk::Exact>(vb[0], vb[1], vb[2], vb[3]) == rk::Sign::zero) {
+      continue;
+    }
+    const ConvexPolyhedron a = make_tet("a", va), b = make_tet("b", vb);
+    BOOST_TEST((rk::classify_overlap<rk::Filtered>(a, b) == verdict_over_all_candidates(a, b)));
+    BOOST_TEST((rk::classify_overlap<rk::Filtered>(b, a) == verdict_over_all_candidates(b, a)));
+    ++checked;
+  }
 }

@@ -31,6 +31,7 @@
 // and keeps every id; only the split of a bent face into facets (and so a facet's index and a
 // diagonal) may change with rounding, which is why contacts name faces as given, not facets.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -102,6 +103,10 @@ class ConvexPolyhedron {
   // The faces as given to make().
   std::span<const Face> input_faces() const noexcept { return input_faces_; }
   std::span<const Edge> edges() const noexcept { return edges_; }
+  // Per edge (first, second): the facet whose loop runs first -> second, then the one whose loop
+  // runs second -> first. For outward normals n1, n2 of these facets, n1 x n2 points along
+  // second - first.
+  std::span<const std::array<std::uint32_t, 2>> edge_faces() const noexcept { return edge_faces_; }
   const Point3& operator[](std::size_t i) const { return vertices_[i]; }
   std::size_t size() const noexcept { return vertices_.size(); }
 
@@ -114,6 +119,7 @@ class ConvexPolyhedron {
   std::vector<Face> facets_;
   std::vector<std::size_t> input_face_;  // per facet
   std::vector<Edge> edges_;
+  std::vector<std::array<std::uint32_t, 2>> edge_faces_;  // per edge
 };
 
 }  // namespace rockcontact::kernel
