@@ -79,7 +79,7 @@ dyn::PairsOverrides pairs_overrides(const PairsOptions& options) {
 // `pairs --compare THEIRS IN`: the report on stdout (stderr when the JSON goes to stdout).
 int run_compare(const PairsOptions& options) {
   const dyn::PairsInput input = dyn::read_pairs_file(options.input);
-  const dyn::ResultsDocument theirs = dyn::read_results_file(options.compare);
+  const dyn::ResultsDocument theirs = dyn::read_results_file(options.compare, input.dimension);
   const dyn::Comparison comparison =
       dyn::compare_pairs(input, theirs, pairs_overrides(options), options.compare_options);
   if (!options.output.empty()) write_json(options.output, dyn::comparison_json(comparison));
