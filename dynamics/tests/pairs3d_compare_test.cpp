@@ -283,6 +283,7 @@ BOOST_AUTO_TEST_CASE(the_report_shows_polyhedra) {
   dyn::write_comparison(text, c);
   BOOST_TEST_INFO(text.str());
   BOOST_TEST(text.str().find("contact_dimension") != std::string::npos);
+  BOOST_TEST(text.str().find("  resting: ours [[") != std::string::npos);
   BOOST_TEST(text.str().find("\"faces\":[[0,3,2,1]") != std::string::npos);
   BOOST_TEST(text.str().find("compare: 1 of 4 pairs disagree (contact_set 1)") !=
              std::string::npos);

@@ -105,16 +105,17 @@ int run_pairs(const PairsOptions& options) {
 void add_compare_options(CLI::App* sub, PairsOptions& options) {
   CLI::Option* compare =
       sub->add_option("--compare", options.compare,
-                      "THEIRS.json: another kernel's results for INPUT (output schema, only "
-                      "results[].id required); compare them with ours field by field and exit "
-                      "3 on a disagreement (dynamics/.../pairs_compare.hpp)");
+                      "THEIRS.json: another kernel's results for INPUT (output schema of its "
+                      "dimension, only results[].id required); compare them with ours field by "
+                      "field and exit 3 on a disagreement (dynamics/.../pairs_compare.hpp)");
   sub->add_option("--rtol", options.compare_options.rtol,
                   "With --compare: relative tolerance (error > atol + rtol * scale disagrees)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
       ->needs(compare);
   sub->add_option("--atol", options.compare_options.atol,
-                  "With --compare: absolute tolerance, in each field's unit (m^2, N/m, m)")
+                  "With --compare: absolute tolerance, in each field's unit (m, m^2, m^3, N/m, "
+                  "rad)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
       ->needs(compare);

@@ -782,10 +782,11 @@ void write_worst(std::ostream& out, const FieldReport& r, int dimension) {
       << " disagree; " << r.worst.size() << " case" << (r.worst.size() == 1 ? "" : "s")
       << " shown\n";
   for (const FieldCase& c : r.worst) {
-    out << "  " << c.pair.id << ": ours " << c.ours.dump() << ", theirs " << c.theirs.dump();
+    const ordered_json pair = pair_json(c, dimension);
+    out << "  " << pair["id"].get<std::string>() << ": ours " << c.ours.dump() << ", theirs "
+        << c.theirs.dump();
     if (c.abs_error) out << "; error " << error_text(c.abs_error);
     if (c.rel_error) out << " (relative " << error_text(c.rel_error) << ')';
-    const ordered_json pair = pair_json(c, dimension);
     out << (c.disagrees ? "  DISAGREES" : "  within tolerance") << '\n'
         << "    cp " << pair["cp"].dump() << "\n    tp " << pair["tp"].dump() << '\n';
   }
