@@ -289,3 +289,31 @@ BOOST_AUTO_TEST_CASE(the_report_shows_polyhedra) {
              std::string::npos);
   BOOST_CHECK_THROW(c.field(dyn::Field::area), std::invalid_argument);
 }
+
+// The documented limit of the normal's comparison: a 0.5 m cube centred in a unit cube leaves
+// along any of the six axis directions with the same depth, 0.25 + 0.5 = 0.75 m. A kernel that
+// reports another of them than ours agrees on the depth and is reported as a normal
+// disagreement of pi/2 rad.
+BOOST_AUTO_TEST_CASE(a_tied_minimal_direction_is_a_normal_disagreement) {
+  json document = dyn::read_json_file(data_dir + "/compare3d_in.json");
+  json& pair = document.at("pairs").at(0);
+  pair["id"] = "centred";
+  for (json& v : pair.at("tp").at("vertices")) v[2] = v[2].get<double>() - 0.75;  // z 0.25..0.75
+  document["pairs"] = json::array({pair});
+  const dyn::PairsInput in = dyn::parse_pairs(document, "centred.json");
+  const json ours = json(dyn::run_pairs(in, {rockcontact::kernel::PolicyKind::exact, {}}));
+  const json& penetration = ours.at("results").at(0).at("penetration");
+  BOOST_TEST_REQUIRE(penetration.at("depth").get<double>() == 0.75);
+  // Another axis of the six: the normal's components moved one place, (x, y, z) -> (z, x, y).
+  const json& n = penetration.at("normal");
+  const json rotated = {n[2], n[0], n[1]};
+  const json theirs = {
+      {"results",
+       {{{"id", "centred"}, {"penetration", {{"depth", 0.75}, {"normal", rotated}}}}}}};
+  const dyn::Comparison c =
+      dyn::compare_pairs(in, dyn::parse_results(theirs, "theirs.json", 3), {}, {});
+  expect_disagreements(c, {{dyn::Field::normal, "centred"}});
+  BOOST_TEST(c.field(dyn::Field::depth).disagreements == 0u);
+  BOOST_TEST(planted_case(c, dyn::Field::normal).abs_error.value() == std::acos(0.0),
+             boost::test_tools::tolerance(1e-15));
+}

@@ -194,7 +194,9 @@ ContactSetRecord read_contact_set(const JsonReader& reader, const json& value,
     const std::string_view what = expected(contact_set_fields, "dimension");
     const std::int64_t d =
         reader.integer(value.at("dimension"), json_child(path, "dimension"), what);
-    if (d < 0 || d > 2) reader.fail_expected(json_child(path, "dimension"), what, value.at("dimension"));
+    if (d < 0 || d > 2) {
+      reader.fail_expected(json_child(path, "dimension"), what, value.at("dimension"));
+    }
     out.dimension = static_cast<int>(d);
   }
   if (value.contains("vertices")) {
@@ -240,7 +242,8 @@ void read_values3(const JsonReader& reader, const json& value, const std::string
                   ResultRecord& r) {
   const auto field = [&](std::string_view name) { return json_child(path, name); };
   if (value.contains("volume")) {
-    r.volume = reader.number(value.at("volume"), field("volume"), expected(result3_fields, "volume"));
+    r.volume =
+        reader.number(value.at("volume"), field("volume"), expected(result3_fields, "volume"));
   }
   if (value.contains("distance")) {
     r.has_distance = true;
@@ -492,7 +495,8 @@ FieldCase measure_normal(const ResultRecord& ours, const Point3& theirs,
 FieldCase measure_contact_set(const ResultRecord& ours, const ResultRecord& theirs, double size,
                               const CompareOptions& options) {
   if (!ours.contact_set || !theirs.contact_set) {
-    return discrete(*field_value(ours, Field::contact_set), *field_value(theirs, Field::contact_set));
+    return discrete(*field_value(ours, Field::contact_set),
+                    *field_value(theirs, Field::contact_set));
   }
   return measure_vertex_set(ours.contact_set->vertices.value(), *theirs.contact_set->vertices, size,
                             options);
