@@ -79,7 +79,7 @@ dyn::PairsOverrides pairs_overrides(const PairsOptions& options) {
 // `pairs --compare THEIRS IN`: the report on stdout (stderr when the JSON goes to stdout).
 int run_compare(const PairsOptions& options) {
   const dyn::PairsInput input = dyn::read_pairs_file(options.input);
-  const dyn::ResultsDocument theirs = dyn::read_results_file(options.compare);
+  const dyn::ResultsDocument theirs = dyn::read_results_file(options.compare, input.dimension);
   const dyn::Comparison comparison =
       dyn::compare_pairs(input, theirs, pairs_overrides(options), options.compare_options);
   if (!options.output.empty()) write_json(options.output, dyn::comparison_json(comparison));
@@ -105,16 +105,17 @@ int run_pairs(const PairsOptions& options) {
 void add_compare_options(CLI::App* sub, PairsOptions& options) {
   CLI::Option* compare =
       sub->add_option("--compare", options.compare,
-                      "THEIRS.json: another kernel's results for INPUT (output schema, only "
-                      "results[].id required); compare them with ours field by field and exit "
-                      "3 on a disagreement (dynamics/.../pairs_compare.hpp)");
+                      "THEIRS.json: another kernel's results for INPUT (output schema of its "
+                      "dimension, only results[].id required); compare them with ours field by "
+                      "field and exit 3 on a disagreement (dynamics/.../pairs_compare.hpp)");
   sub->add_option("--rtol", options.compare_options.rtol,
                   "With --compare: relative tolerance (error > atol + rtol * scale disagrees)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
       ->needs(compare);
   sub->add_option("--atol", options.compare_options.atol,
-                  "With --compare: absolute tolerance, in each field's unit (m^2, N/m, m)")
+                  "With --compare: absolute tolerance, in each field's unit (m, m^2, m^3, N/m, "
+                  "rad)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
       ->needs(compare);
