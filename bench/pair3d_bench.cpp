@@ -34,6 +34,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -150,8 +151,10 @@ void describe(const Pool& pool) {
                               std::to_string(counts[0]) + "/" + std::to_string(counts[1]) + "/" +
                                   std::to_string(counts[2]));
   benchmark::AddCustomContext("pool " + pool.name + " naive_sat wrong verdicts", std::to_string(naive_wrong));
+  char worst[32];
+  std::snprintf(worst, sizeof worst, "%.2e", worst_volume);
   benchmark::AddCustomContext("pool " + pool.name + " naive volume max |error vs CGAL| / smaller block volume",
-                              std::to_string(worst_volume));
+                              worst);
 }
 
 }  // namespace
