@@ -40,7 +40,8 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using P3 = K::Point_3;
 using Triangle = std::array<std::size_t, 3>;
 
-std::size_t find(std::vector<std::size_t>& parent, std::size_t i) {
+// Union-find with path halving.
+std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
 }
@@ -55,7 +56,7 @@ EdgeOwner edge_owner(const std::vector<Triangle>& tris) {
   return owner;
 }
 
-// Step 2: the coplanar regions, as a representative triangle per triangle.
+// Step 2: each triangle's coplanar region, named by one of its triangles.
 std::vector<std::size_t> coplanar_regions(const std::vector<P3>& p, const std::vector<Triangle>& tris,
                                           const EdgeOwner& owner) {
   std::vector<std::size_t> parent(tris.size());
@@ -68,12 +69,12 @@ std::vector<std::size_t> coplanar_regions(const std::vector<P3>& p, const std::v
       for (std::size_t v : g) {
         if (v != f[0] && v != f[1] && v != f[2] &&
             CGAL::orientation(p[f[0]], p[f[1]], p[f[2]], p[v]) == CGAL::COPLANAR) {
-          parent[find(parent, t)] = find(parent, n);
+          parent[root(parent, t)] = root(parent, n);
         }
       }
     }
   }
-  for (std::size_t t = 0; t < tris.size(); ++t) parent[t] = find(parent, t);
+  for (std::size_t t = 0; t < tris.size(); ++t) parent[t] = root(parent, t);
   return parent;
 }
 
@@ -91,7 +92,7 @@ std::vector<std::vector<std::size_t>> region_loops(const EdgeOwner& owner, const
     do {
       loop.push_back(v);
       v = step.at(v);
-    } while (v != start && loop.size() <= step.size());
+    } while (v != start && loop.size() <= step.size());  // one cycle; the bound only stops a bug
     loops.push_back(std::move(loop));
   }
   return loops;
