@@ -7,6 +7,9 @@
 //                         them flagged to go through convex_hull or paper demarcation, plus a
 //                         few hand-made degenerate pairs in the small-integer, dyadic and tagged
 //                         encodings;
+//   OUT_DIR/pair_kernel3d/  PAIRS_PER_FAMILY generated-mode inputs of every 3D family
+//                         (fuzz_pair_kernel3d.cpp's format), half with a one-ulp
+//                         perturbation, and two cubes in the points mode;
 //   OUT_DIR/pairs_json/   the `pairs` examples (examples/pairs/*.json);
 //   OUT_DIR/scene_json/   the scenes (examples/scenes/*.json), plus a region whose joint spacing
 //                         (1e-9 m in a 1 km square) the reader must reject quickly.
@@ -22,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rockcontact/generators/pair3d_generators.hpp"
 #include "rockcontact/generators/pair_generators.hpp"
 #include "pair_input.hpp"
 
@@ -56,6 +60,38 @@ std::size_t write_generated(const fs::path& dir, std::size_t per_family) {
     }
   }
   return written;
+}
+
+// fuzz_pair_kernel3d's generated mode: flags 1, family, seed (8 bytes), index (2 bytes), then
+// for odd indices one perturbation (vertex 0 of b, coordinate z, +1 ulp); and its points mode
+// in the small encoding: a unit cube of side 4 and the same cube on top of it (face touch).
+std::size_t write_generated3d(const fs::path& dir, std::size_t per_family) {
+  std::size_t written = 0;
+  for (std::size_t f = 0; f < rb::all_families3d.size(); ++f) {
+    for (std::size_t i = 0; i < per_family; ++i) {
+      std::vector<std::uint8_t> bytes{1, static_cast<std::uint8_t>(f)};
+      for (int k = 0; k < 8; ++k) bytes.push_back(static_cast<std::uint8_t>(seed >> (8 * k)));
+      bytes.push_back(static_cast<std::uint8_t>(i));
+      bytes.push_back(static_cast<std::uint8_t>(i >> 8));
+      if (i % 2 == 1) bytes.insert(bytes.end(), {0x80, 2, 1, 0});
+      write(dir / (std::string(rb::to_string(rb::all_families3d[f])) + "_" + std::to_string(i) + ".bin"), bytes);
+      ++written;
+    }
+  }
+  const auto small = static_cast<std::uint8_t>(static_cast<std::uint8_t>(rf::Encoding::small) << 1);
+  std::vector<std::uint8_t> cubes{small, 8, 8};
+  for (const int z0 : {0, 4}) {
+    for (const int x : {0, 4}) {
+      for (const int y : {0, 4}) {
+        for (const int z : {0, 4}) {
+          cubes.insert(cubes.end(), {static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y),
+                                     static_cast<std::uint8_t>(z0 + z)});
+        }
+      }
+    }
+  }
+  write(dir / "small_cubes_face_touch.bin", cubes);
+  return written + 1;
 }
 
 // Hand-made pairs in the other encodings (byte layout in pair_input.hpp).
@@ -110,9 +146,10 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1];
   const std::size_t per_family = argc == 3 ? std::strtoull(argv[2], nullptr, 10) : 16;
   const fs::path examples = ROCKCONTACT_EXAMPLES_DIR;
-  for (const char* dir : {"pair_kernel", "pairs_json", "scene_json"}) fs::create_directories(out / dir);
+  for (const char* dir : {"pair_kernel", "pair_kernel3d", "pairs_json", "scene_json"}) fs::create_directories(out / dir);
 
   const std::size_t pairs = write_generated(out / "pair_kernel", per_family) + write_handmade(out / "pair_kernel");
+  const std::size_t pairs3d = write_generated3d(out / "pair_kernel3d", per_family);
   const std::size_t pair_files = copy_json(examples / "pairs", out / "pairs_json");
   std::size_t scenes = copy_json(examples / "scenes", out / "scene_json");
   write_text(out / "scene_json" / "spacing_1e-9.json",
@@ -123,7 +160,7 @@ int main(int argc, char** argv) {
  "joint_sets": [{"dip_deg": 30, "spacing": 1e-9}]}
 )");
   ++scenes;
-  std::printf("fuzz_corpus: %zu pair inputs, %zu pairs documents, %zu scenes in %s\n", pairs, pair_files, scenes,
-              out.c_str());
+  std::printf("fuzz_corpus: %zu pair inputs, %zu 3D pair inputs, %zu pairs documents, %zu scenes in %s\n", pairs,
+              pairs3d, pair_files, scenes, out.c_str());
   return 0;
 }

@@ -57,6 +57,7 @@ class ByteReader {
   explicit ByteReader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
 
   std::uint8_t byte() { return pos_ < bytes_.size() ? bytes_[pos_++] : 0; }
+  bool done() const { return pos_ >= bytes_.size(); }
 
   double raw() {
     std::uint64_t bits = 0;
