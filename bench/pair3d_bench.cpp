@@ -3,6 +3,13 @@
 //
 //   classify/<policy>/<family>   kernel::classify_overlap (the verdict) under Float, Filtered,
 //                                Exact
+//   volume/<policy>/<family>     kernel::intersection_volume under Filtered, Exact
+//   overlap_volume_constraints/<policy>/<family>  a contact pass's work on the pair: the
+//                                verdict, the volume when overlapping, the generalized contact
+//                                constraints (contact_constraints.hpp) when touching or
+//                                overlapping; under Float, Filtered, Exact
+//   naive_sat_clip_volume/<family>  the naive counterpart: naive SAT, then the naive clip's
+//                                volume when it says overlap
 //   naive_sat/<family>           naive_clip3d.hpp: the separating axis test in plain double
 //   naive_clip_volume/<family>   naive_clip3d.hpp: a clipped by b's face planes (Sutherland-
 //                                Hodgman on the face polygons, a cap face per plane), volume by
@@ -22,7 +29,7 @@
 // barely pushed pair has a volume near zero).
 //
 // Adding a library query: one entry in `contenders` (a name and a function of the pool and the
-// pair index), e.g. the intersection volume under each policy; every pool gets the row.
+// pair index); every pool gets the row.
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -41,7 +48,9 @@
 
 #include "naive_clip3d.hpp"
 #include "rockcontact/generators/pair3d_generators.hpp"
+#include "rockcontact/kernel/3d/contact_constraints.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
+#include "rockcontact/kernel/3d/intersection.hpp"
 #include "rockcontact/kernel/3d/moments.hpp"
 #include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
@@ -116,10 +125,40 @@ Contender classify() {
           }};
 }
 
+// The work of a contact pass on one pair: the verdict, the intersection volume when overlapping,
+// the generalized contact constraints when touching or overlapping.
+template <rk::NumberPolicy Policy>
+Contender overlap_volume_constraints() {
+  return {"overlap_volume_constraints/" + std::string(Policy::name), [](const Pool& pool, std::size_t i) {
+            const rk::ConvexPolyhedron &a = pool.pairs[i].a, &b = pool.pairs[i].b;
+            const rk::Overlap verdict = rk::classify_overlap<Policy>(a, b);
+            if (verdict == rk::Overlap::overlap) benchmark::DoNotOptimize(rk::intersection_volume<Policy>(a, b));
+            if (verdict != rk::Overlap::separate) benchmark::DoNotOptimize(rk::contact_constraints<Policy>(a, b));
+          }};
+}
+
+template <rk::NumberPolicy Policy>
+Contender volume() {
+  return {"volume/" + std::string(Policy::name), [](const Pool& pool, std::size_t i) {
+            benchmark::DoNotOptimize(rk::intersection_volume<Policy>(pool.pairs[i].a, pool.pairs[i].b));
+          }};
+}
+
 const std::vector<Contender> contenders{
     classify<rk::Float>(),
     classify<rk::Filtered>(),
     classify<rk::Exact>(),
+    volume<rk::Filtered>(),
+    volume<rk::Exact>(),
+    overlap_volume_constraints<rk::Float>(),
+    overlap_volume_constraints<rk::Filtered>(),
+    overlap_volume_constraints<rk::Exact>(),
+    {"naive_sat_clip_volume",
+     [](const Pool& pool, std::size_t i) {
+       if (naive3d::sat_verdict(pool.naive_a[i], pool.naive_b[i]) == naive3d::Verdict::overlap) {
+         benchmark::DoNotOptimize(naive3d::clip_volume(pool.naive_a[i], pool.naive_b[i]));
+       }
+     }},
     {"naive_sat",
      [](const Pool& pool, std::size_t i) {
        benchmark::DoNotOptimize(naive3d::sat_verdict(pool.naive_a[i], pool.naive_b[i]));

@@ -1,6 +1,6 @@
 #pragma once
 // The 3D pair campaign: every generated pair (generators/.../pair3d_generators.hpp) run through
-// the 3D pair queries (pair3d_queries.hpp: today the overlap verdict) under Float, Filtered,
+// the 3D pair queries (pair3d_queries.hpp: every query of the pairs contract) under Float, Filtered,
 // Checked and Exact, the properties below checked on every case and tallied per family.
 // pair3d_properties_test.cpp runs a slice of it in CI; robustness_table3d runs it at full size
 // (10^6 pairs) and prints the markdown table of the README.

@@ -1,17 +1,26 @@
 #pragma once
 // The 3D pair queries that the 3D campaign (pair3d_campaign.hpp), the 3D fuzz target
-// (fuzz/fuzz_pair_kernel3d.cpp) and the 3D benchmark (bench/pair3d_bench.cpp) run on each
-// pair: one function per policy, so a new query (intersection volume, distance, penetration,
-// contact set, constraints) is added here once, as a field of Pair3dResult, a line of
-// evaluate_pair3d and a line of staged_differences, and every harness checks it.
+// (fuzz/fuzz_pair_kernel3d.cpp) and the 3D benchmark (bench/pair3d_bench.cpp) run on each pair:
+// every query of the `pairs` contract at once, contact::evaluate_pair3d (the verdict, the
+// intersection volume, distance, penetration, contact set and the generalized contact
+// constraints at tolerance 0).
 //
-// Today: the overlap verdict (kernel/3d/overlap.hpp), exact under Filtered, Exact and Checked,
-// so the staged policies must match Exact bit for bit.
+// What the staged policies must give, against Exact:
+//   * combinatorics equal: the verdict, the contact set's dimension and corner count, and for
+//     every constraint its type and its two features (they follow exact decisions only);
+//   * constructions close: volume, distance and penetration depth within 1e-9 relative or
+//     1e-12 of the pair's size (its cube for volumes), the contact3d reference's tolerances
+//     (robustness_tests/data/contact3d/README.md), which Filtered meets there with margins of
+//     10^6 (the kernel's tests print the largest errors).
+// Under swapping the pair: the same verdict, and the volume, distance and depth within the same
+// tolerances.
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
+#include "rockcontact/contact/generalized3d/pair_contact3d.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
-#include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/core/overlap.hpp"
 
@@ -19,38 +28,86 @@ namespace rockcontact::robustness {
 
 struct Pair3dResult {
   kernel::Overlap verdict = kernel::Overlap::separate;
+  contact::Pair3dResult queries;  // every query of the pair
+  double size = 0.0;              // the largest bounding-box extent of the pair, m
 };
+
+inline double pair_size(const kernel::ConvexPolyhedron& a, const kernel::ConvexPolyhedron& b) {
+  kernel::Point3 lo = a[0], hi = a[0];
+  for (const auto* p : {&a, &b}) {
+    for (const kernel::Point3& v : p->vertices()) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+  }
+  return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+}
 
 // Every query of the pair (a, b) under Policy. Checked throws PolicyDisagreement when a
 // predicate's staged sign differs from its independent exact evaluation.
 template <kernel::NumberPolicy Policy>
 Pair3dResult evaluate_pair3d(const kernel::ConvexPolyhedron& a, const kernel::ConvexPolyhedron& b) {
   Pair3dResult r;
-  r.verdict = kernel::classify_overlap<Policy>(a, b);
+  contact::evaluate_pair3d<Policy>(a, b, contact::Pair3dParams{}, r.queries);
+  r.verdict = r.queries.status;
+  r.size = pair_size(a, b);
   return r;
 }
 
-// What the contract forbids between a staged policy's (Filtered, Checked) result and Exact's,
-// as text naming each difference; empty when they agree. Combinatorial answers must be equal;
-// a constructed quantity would be compared here against its derived error bound.
-inline std::string staged_differences(const Pair3dResult& staged, const Pair3dResult& exact) {
-  std::string out;
-  if (staged.verdict != exact.verdict) {
-    out += "verdict " + std::string(kernel::to_string(staged.verdict)) + " != Exact's " +
-           std::string(kernel::to_string(exact.verdict)) + "; ";
+namespace detail {
+
+// "name x != y; " when |x - y| exceeds 1e-9 |y| + 1e-12 scale.
+inline std::string value_difference(const char* name, double x, double y, double scale) {
+  if (std::abs(x - y) <= 1e-9 * std::abs(y) + 1e-12 * scale) return {};
+  return std::string(name) + " " + std::to_string(x) + " != " + std::to_string(y) + "; ";
+}
+
+// The volume, distance and depth of two results of the same pair (in either order).
+inline std::string value_differences(const Pair3dResult& x, const Pair3dResult& y) {
+  std::string out = value_difference("volume", x.queries.volume, y.queries.volume, std::pow(y.size, 3));
+  if (x.queries.separation && y.queries.separation) {
+    out += value_difference("distance", x.queries.separation->distance, y.queries.separation->distance, y.size);
+  }
+  if (x.queries.penetration && y.queries.penetration) {
+    out += value_difference("depth", x.queries.penetration->depth, y.queries.penetration->depth, y.size);
   }
   return out;
 }
 
-// What must hold between the results of (a, b) and (b, a) under one policy; empty when it
-// does. The verdict is symmetric.
-inline std::string swap_differences(const Pair3dResult& ab, const Pair3dResult& ba) {
+}  // namespace detail
+
+// What the contract forbids between a staged policy's (Filtered, Checked) result and Exact's,
+// as text naming each difference; empty when they agree.
+inline std::string staged_differences(const Pair3dResult& staged, const Pair3dResult& exact) {
   std::string out;
+  if (staged.verdict != exact.verdict) {
+    return "verdict " + std::string(kernel::to_string(staged.verdict)) + " != Exact's " +
+           std::string(kernel::to_string(exact.verdict)) + "; ";
+  }
+  const auto& s = staged.queries;
+  const auto& e = exact.queries;
+  if (s.contact_set.has_value() != e.contact_set.has_value() ||
+      (s.contact_set && (s.contact_set->dimension != e.contact_set->dimension ||
+                         s.contact_set->vertices.size() != e.contact_set->vertices.size()))) {
+    out += "contact set differs from Exact's; ";
+  }
+  bool same_constraints = s.constraints.size() == e.constraints.size();
+  for (std::size_t i = 0; same_constraints && i < s.constraints.size(); ++i) {
+    same_constraints = s.constraints[i].type == e.constraints[i].type &&
+                       s.constraints[i].cp_feature == e.constraints[i].cp_feature &&
+                       s.constraints[i].tp_feature == e.constraints[i].tp_feature;
+  }
+  if (!same_constraints) out += "constraints differ from Exact's in number, type or features; ";
+  return out + detail::value_differences(staged, exact);
+}
+
+// What must hold between the results of (a, b) and (b, a) under one policy; empty when it does.
+inline std::string swap_differences(const Pair3dResult& ab, const Pair3dResult& ba) {
   if (ab.verdict != ba.verdict) {
-    out += "verdict(a, b) " + std::string(kernel::to_string(ab.verdict)) + " != verdict(b, a) " +
+    return "verdict(a, b) " + std::string(kernel::to_string(ab.verdict)) + " != verdict(b, a) " +
            std::string(kernel::to_string(ba.verdict)) + "; ";
   }
-  return out;
+  return detail::value_differences(ab, ba);
 }
 
 }  // namespace rockcontact::robustness

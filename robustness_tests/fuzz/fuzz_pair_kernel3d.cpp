@@ -1,4 +1,4 @@
-// libFuzzer target: the 3D pair queries (pair3d_queries.hpp: today the overlap verdict) under
+// libFuzzer target: the 3D pair queries (pair3d_queries.hpp: every query of the pairs contract) under
 // Checked, Filtered and Exact, on convex polyhedra built from the input bytes.
 //
 // Input format (missing bytes decode as zero, so every input decodes to something):

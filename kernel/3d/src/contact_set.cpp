@@ -34,9 +34,14 @@ std::optional<Plane> zero_gap_plane(const ConvexPolyhedron& a, const ConvexPolyh
   for (const auto& f : b.faces()) {
     if (detail::face_gap<Policy>(b, f, a) == Gap::zero) return Plane{b[f[0]], b[f[1]], b[f[0]], b[f[2]], b[f[0]]};
   }
-  for (const auto& ea : a.edges()) {
-    for (const auto& eb : b.edges()) {
-      if (detail::edge_gap<Policy>(a, ea, b, eb) == Gap::zero) {
+  // A touching pair's zero-gap plane is a facet plane of the Minkowski difference: only the
+  // edge pairs that may give a facet are tried.
+  const detail::MinkowskiEdgePairs<Policy> pairs(a, b);
+  for (std::size_t i = 0; i < a.edges().size(); ++i) {
+    for (std::size_t j = 0; j < b.edges().size(); ++j) {
+      const auto& ea = a.edges()[i];
+      const auto& eb = b.edges()[j];
+      if (pairs.may_be_facet(i, j) && detail::edge_gap<Policy>(a, ea, b, eb) == Gap::zero) {
         return Plane{a[ea.first], a[ea.second], b[eb.first], b[eb.second], a[ea.first]};
       }
     }

@@ -1,8 +1,10 @@
 #include "rockcontact/kernel/3d/penetration.hpp"
 
+#include <optional>
 #include <vector>
 
 #include "local_vector.hpp"
+#include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 #include "rockcontact/kernel/core/predicate_scope.hpp"
@@ -63,16 +65,21 @@ Vector3<FT> face_normal(const std::vector<Vector3<FT>>& v, const ConvexPolyhedro
   return detail::cross(v[face[1]] - v[face[0]], v[face[2]] - v[face[0]]);
 }
 
-template <class FT>
-Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp) {
+// `pairs` rules out the edge pairs that give no facet of cp - tp: the minimum over the
+// remaining candidates is still the minimum over all facet normals.
+template <class FT, class EdgePairs>
+Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp, const EdgePairs& pairs) {
   const Point3 origin = cp[0];
   const auto cv = local_vertices<FT>(cp, origin);
   const auto tv = local_vertices<FT>(tp, origin);
   MinimumAxis<FT> best{cv, tv};
   for (const auto& face : cp.faces()) best.offer(face_normal(cv, face));
   for (const auto& face : tp.faces()) best.offer(-face_normal(tv, face));
-  for (const auto& [i, j] : cp.edges()) {
-    for (const auto& [k, l] : tp.edges()) {
+  for (std::size_t e = 0; e < cp.edges().size(); ++e) {
+    const auto [i, j] = cp.edges()[e];
+    for (std::size_t f = 0; f < tp.edges().size(); ++f) {
+      if (!pairs.may_be_facet(e, f)) continue;
+      const auto [k, l] = tp.edges()[f];
       const Vector3<FT> n = detail::cross(cv[j] - cv[i], tv[l] - tv[k]);
       if (detail::is_zero(n)) continue;  // parallel edges: no facet of cp - tp
       best.offer(n);
@@ -92,12 +99,14 @@ Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedr
 template <NumberPolicy Policy>
 std::optional<Penetration> penetration(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp) {
   Overlap verdict;
+  std::optional<detail::MinkowskiEdgePairs<Policy>> pairs;
   {
     PredicateScope scope;
     verdict = classify_overlap<Policy>(cp, tp);
+    if (verdict == Overlap::overlap) pairs.emplace(cp, tp);
   }
   if (verdict != Overlap::overlap) return std::nullopt;
-  return minimum_translation<detail::ConstructionType<Policy>>(cp, tp);
+  return minimum_translation<detail::ConstructionType<Policy>>(cp, tp, *pairs);
 }
 
 #define ROCKCONTACT_INSTANTIATE(P) \

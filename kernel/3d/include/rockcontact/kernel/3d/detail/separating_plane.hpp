@@ -4,6 +4,10 @@
 // parallel to an edge of B. Shared by the overlap verdict and the contact set, which needs the
 // zero-gap plane itself. Every decision is an exact sign under the staged policies.
 
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
@@ -29,12 +33,16 @@ Gap face_gap(const ConvexPolyhedron& p, const ConvexPolyhedron::Face& face, cons
 
 // The common sign of triple(e, f, origin -> x) over the vertices x of `p`, or zero when the
 // plane through origin with normal e x f cuts p (both signs occur). Never all zero: p is solid.
+// `edge` is the edge of p the plane goes through (origin is its first end): its two ends are on
+// the plane by definition, so they are skipped; evaluated, the far end's zero would be an exact
+// zero that rounding hides from the filters, sending every such call to the exact stage.
 template <NumberPolicy Policy>
 Sign side(const Point3& e0, const Point3& e1, const Point3& f0, const Point3& f1, const Point3& origin,
-          const ConvexPolyhedron& p) {
+          const ConvexPolyhedron& p, const ConvexPolyhedron::Edge& edge) {
   Sign side = Sign::zero;
-  for (const Point3& x : p.vertices()) {
-    const Sign s = triple_sign<Policy>(e0, e1, f0, f1, origin, x);
+  for (std::uint32_t i = 0; i < p.size(); ++i) {
+    if (i == edge.first || i == edge.second) continue;
+    const Sign s = triple_sign<Policy>(e0, e1, f0, f1, origin, p[i]);
     if (s == Sign::zero) continue;
     if (side == Sign::zero) {
       side = s;
@@ -52,13 +60,56 @@ Gap edge_gap(const ConvexPolyhedron& a, const ConvexPolyhedron::Edge& ea, const 
              const ConvexPolyhedron::Edge& eb) {
   const Point3 &e0 = a[ea.first], &e1 = a[ea.second], &f0 = b[eb.first], &f1 = b[eb.second];
   if (parallel<Policy>(e0, e1, f0, f1)) return Gap::none;
-  const Sign side_a = side<Policy>(e0, e1, f0, f1, e0, a);
+  const Sign side_a = side<Policy>(e0, e1, f0, f1, e0, a, ea);
   if (side_a == Sign::zero) return Gap::none;
-  const Sign side_b = side<Policy>(e0, e1, f0, f1, f0, b);
+  const Sign side_b = side<Policy>(e0, e1, f0, f1, f0, b, eb);
   if (side_b != -side_a) return Gap::none;
   const Sign gap = side_b * triple_sign<Policy>(e0, e1, f0, f1, e0, f0);
   if (gap == Sign::negative) return Gap::none;
   return gap == Sign::zero ? Gap::zero : Gap::positive;
 }
+
+// Edge pairs pruned on the Gauss map: e x f is a facet normal of the Minkowski difference only
+// when the arc of e (between its facets' normals n1, n2) crosses the arc of f negated (between
+// -m1 and -m2). With n1 x n2 along e and m1 x m2 along f (ConvexPolyhedron::edge_faces) the
+// arcs cross exactly when (m1 . e)(m2 . e) < 0, (n1 . f)(n2 . f) < 0 and (m1 . e)(n2 . f) < 0
+// (the great circles cross, and on the arcs rather than at their antipodes). A pair is ruled
+// out only when one of the three products is strictly positive: a zero keeps it, so every facet
+// of the difference stays a candidate. The signs are triple products of input points, one per
+// (facet, edge of the other block), computed once: F_B E_A + F_A E_B predicates instead of the
+// E_A E_B (V_A + V_B) of testing every pair.
+template <NumberPolicy Policy>
+class MinkowskiEdgePairs {
+ public:
+  MinkowskiEdgePairs(const ConvexPolyhedron& a, const ConvexPolyhedron& b)
+      : a_(a), b_(b), m_dot_e_(normal_dot_edges(b, a)), n_dot_f_(normal_dot_edges(a, b)) {}
+
+  // May edge i of a and edge j of b give a facet of the Minkowski difference?
+  bool may_be_facet(std::size_t i, std::size_t j) const {
+    const auto [n1, n2] = a_.edge_faces()[i];
+    const auto [m1, m2] = b_.edge_faces()[j];
+    const std::size_t edges_a = a_.edges().size(), edges_b = b_.edges().size();
+    const Sign m1e = m_dot_e_[m1 * edges_a + i], m2e = m_dot_e_[m2 * edges_a + i];
+    const Sign n1f = n_dot_f_[n1 * edges_b + j], n2f = n_dot_f_[n2 * edges_b + j];
+    return m1e * m2e != Sign::positive && n1f * n2f != Sign::positive && m1e * n2f != Sign::positive;
+  }
+
+ private:
+  // Signs of (outward normal of facet g of p) . (direction of edge e of q), g-major; the normal of
+  // g is (g1 - g0) x (g2 - g0).
+  static std::vector<Sign> normal_dot_edges(const ConvexPolyhedron& p, const ConvexPolyhedron& q) {
+    std::vector<Sign> out;
+    out.reserve(p.faces().size() * q.edges().size());
+    for (const auto& g : p.faces()) {
+      for (const auto& [e0, e1] : q.edges()) out.push_back(triple_sign<Policy>(p[g[0]], p[g[1]], p[g[0]], p[g[2]], q[e0], q[e1]));
+    }
+    return out;
+  }
+
+  const ConvexPolyhedron& a_;
+  const ConvexPolyhedron& b_;
+  std::vector<Sign> m_dot_e_;  // b's facet normals against a's edges
+  std::vector<Sign> n_dot_f_;  // a's facet normals against b's edges
+};
 
 }  // namespace rockcontact::kernel::detail
