@@ -4,6 +4,8 @@
 //   classify/<policy>/<family>   kernel::classify_overlap (the verdict) under Float, Filtered,
 //                                Exact
 //   volume/<policy>/<family>     kernel::intersection_volume under Filtered, Exact
+//   overlap_volume/<policy>/<family>  the verdict, then the volume when overlapping (what the
+//                                naive row below computes), under Float, Filtered, Exact
 //   overlap_volume_constraints/<policy>/<family>  a contact pass's work on the pair: the
 //                                verdict, the volume when overlapping, the generalized contact
 //                                constraints (contact_constraints.hpp) when touching or
@@ -137,6 +139,17 @@ Contender overlap_volume_constraints() {
           }};
 }
 
+// The naive kernel's work, like for like: the verdict, and the volume when overlapping.
+template <rk::NumberPolicy Policy>
+Contender overlap_volume() {
+  return {"overlap_volume/" + std::string(Policy::name), [](const Pool& pool, std::size_t i) {
+            const rk::ConvexPolyhedron &a = pool.pairs[i].a, &b = pool.pairs[i].b;
+            if (rk::classify_overlap<Policy>(a, b) == rk::Overlap::overlap) {
+              benchmark::DoNotOptimize(rk::intersection_volume<Policy>(a, b));
+            }
+          }};
+}
+
 template <rk::NumberPolicy Policy>
 Contender volume() {
   return {"volume/" + std::string(Policy::name), [](const Pool& pool, std::size_t i) {
@@ -150,6 +163,9 @@ const std::vector<Contender> contenders{
     classify<rk::Exact>(),
     volume<rk::Filtered>(),
     volume<rk::Exact>(),
+    overlap_volume<rk::Float>(),
+    overlap_volume<rk::Filtered>(),
+    overlap_volume<rk::Exact>(),
     overlap_volume_constraints<rk::Float>(),
     overlap_volume_constraints<rk::Filtered>(),
     overlap_volume_constraints<rk::Exact>(),

@@ -36,11 +36,15 @@ std::string padded(std::string text, std::size_t width) {
   return text;
 }
 
+// The width of the id column: the longest id and two spaces.
+std::size_t id_column_width(const ordered_json& results) {
+  std::size_t width = 2;
+  for (const auto& r : results) width = std::max(width, r.at("id").get_ref<const std::string&>().size());
+  return width + 2;
+}
+
 void write_table(std::ostream& out, const ordered_json& results) {
-  std::size_t id_width = 2;
-  for (const auto& r : results)
-    id_width = std::max(id_width, r.at("id").get_ref<const std::string&>().size());
-  id_width += 2;
+  const std::size_t id_width = id_column_width(results);
   out << padded("id", id_width) << padded("status", 10) << padded("area [m^2]", 14)
       << padded("|force| [N/m]", 15) << padded("force [N/m]", 28) << padded("point [m]", 28)
       << "fallbacks\n";
@@ -60,10 +64,7 @@ void write_table(std::ostream& out, const ordered_json& results) {
 // 3D: volume, distance or penetration depth, contact-set dimension, constraints and the
 // largest penalty force among them.
 void write_table3(std::ostream& out, const ordered_json& results) {
-  std::size_t id_width = 2;
-  for (const auto& r : results)
-    id_width = std::max(id_width, r.at("id").get_ref<const std::string&>().size());
-  id_width += 2;
+  const std::size_t id_width = id_column_width(results);
   out << padded("id", id_width) << padded("status", 10) << padded("volume [m^3]", 14)
       << padded("distance [m]", 14) << padded("depth [m]", 14) << padded("set", 5)
       << padded("constraints", 13) << padded("max |force| [N]", 17) << "fallbacks\n";

@@ -26,14 +26,6 @@ struct Closest {
   }
 };
 
-template <class FT>
-std::vector<Vector3<FT>> local_vertices(const ConvexPolyhedron& p, const Point3& origin) {
-  std::vector<Vector3<FT>> out;
-  out.reserve(p.size());
-  for (const Point3& v : p.vertices()) out.push_back(detail::local<FT>(v, origin));
-  return out;
-}
-
 // Vertices of `q` against the faces of `p` whose plane's foot of the vertex lies in the face
 // (on the inner side of, or on, each edge's plane perpendicular to the face).
 template <class FT, class Offer>
@@ -100,8 +92,8 @@ void edge_edge(const ConvexPolyhedron& a, const std::vector<Vector3<FT>>& av, co
 template <class FT>
 Separation closest_points(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
   const Point3 origin = a[0];
-  const auto av = local_vertices<FT>(a, origin);
-  const auto bv = local_vertices<FT>(b, origin);
+  const auto av = detail::local_vertices<FT>(a, origin);
+  const auto bv = detail::local_vertices<FT>(b, origin);
   Closest<FT> best;
   const auto a_to_b = [&](const Vector3<FT>& on_a, const Vector3<FT>& on_b) { best.offer(on_a, on_b); };
   const auto b_to_a = [&](const Vector3<FT>& on_b, const Vector3<FT>& on_a) { best.offer(on_a, on_b); };

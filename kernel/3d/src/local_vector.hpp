@@ -6,6 +6,9 @@
 // (relative error 2^-53 of the local coordinate); under Exact (FT = ExactRational) it is exact.
 // Private to kernel/3d/src.
 
+#include <vector>
+
+#include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/kernel/3d/point3.hpp"
 #include "rockcontact/kernel/core/detail/number_ops.hpp"
 
@@ -59,6 +62,15 @@ Point3 global(const Vector3<FT>& u, const Point3& origin) {
   using Ops = NumberOps<FT>;
   return {Ops::to_double(u.x + Ops::from(origin.x)), Ops::to_double(u.y + Ops::from(origin.y)),
           Ops::to_double(u.z + Ops::from(origin.z))};
+}
+
+// The vertices of p in the frame at `origin`.
+template <class FT>
+std::vector<Vector3<FT>> local_vertices(const ConvexPolyhedron& p, const Point3& origin) {
+  std::vector<Vector3<FT>> out;
+  out.reserve(p.size());
+  for (const Point3& v : p.vertices()) out.push_back(local<FT>(v, origin));
+  return out;
 }
 
 }  // namespace rockcontact::kernel::detail

@@ -53,14 +53,6 @@ struct MinimumAxis {
 };
 
 template <class FT>
-std::vector<Vector3<FT>> local_vertices(const ConvexPolyhedron& p, const Point3& origin) {
-  std::vector<Vector3<FT>> out;
-  out.reserve(p.size());
-  for (const Point3& v : p.vertices()) out.push_back(detail::local<FT>(v, origin));
-  return out;
-}
-
-template <class FT>
 Vector3<FT> face_normal(const std::vector<Vector3<FT>>& v, const ConvexPolyhedron::Face& face) {
   return detail::cross(v[face[1]] - v[face[0]], v[face[2]] - v[face[0]]);
 }
@@ -70,8 +62,8 @@ Vector3<FT> face_normal(const std::vector<Vector3<FT>>& v, const ConvexPolyhedro
 template <class FT, class EdgePairs>
 Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp, const EdgePairs& pairs) {
   const Point3 origin = cp[0];
-  const auto cv = local_vertices<FT>(cp, origin);
-  const auto tv = local_vertices<FT>(tp, origin);
+  const auto cv = detail::local_vertices<FT>(cp, origin);
+  const auto tv = detail::local_vertices<FT>(tp, origin);
   MinimumAxis<FT> best{cv, tv};
   for (const auto& face : cp.faces()) best.offer(face_normal(cv, face));
   for (const auto& face : tp.faces()) best.offer(-face_normal(tv, face));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rockcontact/kernel/3d/detail/halfspace_exact.hpp"
+#include "rockcontact/testing/polyhedra3d.hpp"
 
 // Joint-set cutting in 3D against what the geometry forces: axis-aligned sets cut a cube into
 // known cubes; oblique sets conserve the region's volume exactly (the pieces' exact rational
@@ -19,18 +20,11 @@
 
 namespace rk = rockcontact::kernel;
 using rk::ConvexPolyhedron;
+using rockcontact::testing::box;
 using rk::JointSet3;
 using rk::Point3;
 
 namespace {
-
-ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
-  return ConvexPolyhedron::make(
-      name,
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
-}
 
 mpq_class exact_volume(const rk::HalfspacePolyhedron& p) {
   mpq_class v(rk::detail::exact_volume_string(p));

@@ -13,6 +13,7 @@
 
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/testing/contact3d.hpp"
+#include "rockcontact/testing/polyhedra3d.hpp"
 
 // Contact constraints (seed 001 §2) against closed forms: blocks with dyadic coordinates placed
 // so that each contact's type, features, points, normal and gap are known exactly; and against
@@ -25,6 +26,7 @@ namespace rk = rockcontact::kernel;
 using rk::ConstraintType;
 using rk::ContactConstraint;
 using rk::ConvexPolyhedron;
+using rockcontact::testing::box;
 using rk::Feature;
 using rk::Point3;
 
@@ -38,13 +40,6 @@ Point3 cross(const Point3& a, const Point3& b) {
 }
 double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
 
-ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
-  return ConvexPolyhedron::make(
-      name,
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
-}
 constexpr std::uint32_t box_top = 1, box_right = 3, box_back = 4;  // faces z = hi, x = hi, y = hi
 
 // The prism swept by the convex polygon `base` along h; the base loop is reversed if needed so

@@ -18,6 +18,7 @@
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/testing/contact3d.hpp"
 #include "rockcontact/testing/seed.hpp"
+#include "rockcontact/testing/polyhedra3d.hpp"
 
 // The intersection polyhedron of two convex polyhedra and its volume, against the independent
 // contact3d reference (exact volumes of 132 adversarial pairs), closed forms, and exact
@@ -25,18 +26,11 @@
 
 namespace rk = rockcontact::kernel;
 using rk::ConvexPolyhedron;
+using rockcontact::testing::box;
 using rk::HalfspacePolyhedron;
 using rk::Point3;
 
 namespace {
-
-ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
-  return ConvexPolyhedron::make(
-      name,
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
-}
 
 mpq_class exact_volume(const HalfspacePolyhedron& h) { return mpq_class(rk::detail::exact_volume_string(h)); }
 

@@ -16,6 +16,7 @@
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/testing/contact3d.hpp"
 #include "rockcontact/testing/seed.hpp"
+#include "rockcontact/testing/polyhedra3d.hpp"
 
 // The overlap verdict of two convex polyhedra against closed forms (unit cubes moved by exact
 // offsets, so each contact's kind is known: face on face, edge on face, edge across edge,
@@ -25,32 +26,13 @@
 
 namespace rk = rockcontact::kernel;
 using rk::ConvexPolyhedron;
+using rockcontact::testing::box;
+using rockcontact::testing::unit_cube_at;
+using rockcontact::testing::octahedron;
 using rk::Overlap;
 using rk::Point3;
 
 namespace {
-
-ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
-  return ConvexPolyhedron::make(
-      name,
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
-}
-
-ConvexPolyhedron unit_cube_at(const std::string& name, Point3 o) {
-  return box(name, o, {o.x + 1, o.y + 1, o.z + 1});
-}
-
-// A regular-ish octahedron centred at c with half-diagonal r: its vertices stick out along
-// the axes, so it meets a cube's face or edge with a single vertex.
-ConvexPolyhedron octahedron(const std::string& name, Point3 c, double r) {
-  return ConvexPolyhedron::make(
-      name,
-      {{c.x + r, c.y, c.z}, {c.x - r, c.y, c.z}, {c.x, c.y + r, c.z}, {c.x, c.y - r, c.z}, {c.x, c.y, c.z + r},
-       {c.x, c.y, c.z - r}},
-      {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
-}
 
 template <class Policy>
 void check_all_orders(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Overlap expected) {

@@ -18,6 +18,7 @@
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/testing/seed.hpp"
+#include "rockcontact/testing/polyhedra3d.hpp"
 
 // Clipping and cutting by a plane: closed forms on the unit cube (a general cut, cuts through
 // vertices, an edge, a face, planes that only touch or miss, a cut through implicit vertices of
@@ -29,19 +30,12 @@
 
 namespace rk = rockcontact::kernel;
 using rk::ConvexPolyhedron;
+using rockcontact::testing::box;
 using rk::HalfspacePolyhedron;
 using rk::Plane3;
 using rk::Point3;
 
 namespace {
-
-ConvexPolyhedron box(const std::string& name, Point3 lo, Point3 hi) {
-  return ConvexPolyhedron::make(
-      name,
-      {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-       {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
-}
 
 mpq_class exact_volume(const HalfspacePolyhedron& h) { return mpq_class(rk::detail::exact_volume_string(h)); }
 
