@@ -8,12 +8,14 @@
 // What the staged policies must give, against Exact:
 //   * combinatorics equal: the verdict, the contact set's dimension and corner count, and for
 //     every constraint its type and its two features (they follow exact decisions only);
-//   * constructions close: volume, distance and penetration depth within 1e-9 relative or
-//     1e-12 of the pair's size (its cube for volumes), the contact3d reference's tolerances
-//     (robustness_tests/data/contact3d/README.md), which Filtered meets there with margins of
-//     10^6 (the kernel's tests print the largest errors).
-// Under swapping the pair: the same verdict, and the volume, distance and depth within the same
-// tolerances.
+//   * the intersection volume within 1e-9 relative or 1e-12 of the cube of the pair's size:
+//     Filtered's implicit vertices are certified to 2^-42 of the extent (halfspace_polyhedron),
+//     so its volume is within about 2^-42 size³ of the exact one.
+// The distance and the penetration depth are not compared here: Filtered chooses their features
+// in double, and near parallel closest edges its error grows beyond any fixed tolerance
+// (distance.hpp and penetration.hpp state the bounds). They are checked against the exact
+// contact3d reference (kernel/3d/tests, dynamics/tests/pairs3d_io_test.cpp) instead.
+// Under swapping the pair: the same verdict and the volume within the same tolerance.
 
 #include <algorithm>
 #include <cmath>
@@ -62,16 +64,9 @@ inline std::string value_difference(const char* name, double x, double y, double
   return std::string(name) + " " + std::to_string(x) + " != " + std::to_string(y) + "; ";
 }
 
-// The volume, distance and depth of two results of the same pair (in either order).
+// The volumes of two results of the same pair (in either order).
 inline std::string value_differences(const Pair3dResult& x, const Pair3dResult& y) {
-  std::string out = value_difference("volume", x.queries.volume, y.queries.volume, std::pow(y.size, 3));
-  if (x.queries.separation && y.queries.separation) {
-    out += value_difference("distance", x.queries.separation->distance, y.queries.separation->distance, y.size);
-  }
-  if (x.queries.penetration && y.queries.penetration) {
-    out += value_difference("depth", x.queries.penetration->depth, y.queries.penetration->depth, y.size);
-  }
-  return out;
+  return value_difference("volume", x.queries.volume, y.queries.volume, std::pow(y.size, 3));
 }
 
 }  // namespace detail

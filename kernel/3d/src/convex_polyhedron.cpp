@@ -246,7 +246,9 @@ ConvexPolyhedron ConvexPolyhedron::make(std::string name, std::vector<Point3> ve
   check.vertices();
   const auto as_given = [](std::size_t face) { return static_cast<std::ptrdiff_t>(face); };
   static_cast<void>(check.topology(faces, as_given));
-  auto [facets, input_face] = check.facets();
+  auto split = check.facets();
+  std::vector<Face>& facets = split.first;
+  std::vector<std::size_t>& input_face = split.second;
   const auto facet_face = [&input_face](std::size_t facet) { return static_cast<std::ptrdiff_t>(input_face[facet]); };
   std::vector<Edge> edges = check.topology(facets, facet_face);
   check.geometry(facets, facet_face);
