@@ -25,11 +25,14 @@
 // lists are the same. edges() lists the hull's edges, the diagonals of split faces included.
 //
 // Feature ids. The contact history of the 3D DDA (seed 001 §4.2) follows a contact by the
-// features it joins: a vertex by its index, an edge by its two vertex indices, a face by its
-// index as given. These come from the input and never from geometry, so they stay the same
-// while a block moves and deforms: moved() re-validates new coordinates against the same faces
-// and keeps every id; only the split of a bent face into facets (and so a facet's index and a
-// diagonal) may change with rounding, which is why contacts name faces as given, not facets.
+// features it joins, so these must not be re-derived from rounded geometry each step: a vertex
+// is its index, an edge its two vertex indices (edges()[i] is a pair, so an index into edges()
+// is stable only while the split of bent faces is), a face its index as given (input_face()
+// maps a facet to it). All come from the input: moved() re-validates new coordinates against
+// the same faces and keeps them, and only the split of a bent face into facets (a facet's index,
+// a diagonal) may change with rounding. The kernel's queries report facets and edge indices
+// (contact_constraints.hpp); a caller that keeps history across steps maps them through
+// input_face() and edges().
 
 #include <array>
 #include <cstddef>
