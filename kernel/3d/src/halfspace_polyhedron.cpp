@@ -190,6 +190,136 @@ ExactRational exact_volume(const HalfspacePolyhedron& h) {
   return six_volume(h, exact_frame_coordinates(h, h.frame_origin())) / 6;
 }
 
+// The lazy stage of the Exact volume: the exact volume's formula evaluated in DoubleDouble
+// with a running error bound (BoundedDD), rounded when the bound settles the nearest double.
+using detail::DoubleDouble;
+using BoundedDD = detail::RunningErrorOf<DoubleDouble>;
+
+// A lower bound on |v|: |lo| <= 2^-53 |hi| for a normalized DoubleDouble, and the product below
+// rounds up by at most 2^-53 relative.
+double magnitude_lower_bound(const DoubleDouble& v) { return std::fabs(v.hi) * (1.0 - 0x1p-50); }
+
+// An implicit vertex's coordinate X = S / D from the bounded S and D of Cramer's rule: the
+// quotient q = q0 + q1 refined once by its residual, with the bound
+//   |q - X| <= (|S - q D| + ES + |q| ED) / (|D| - ED)
+// (X - q = (S* - q D*) / D* for the exact S*, D*, which are within ES, ED of S, D), where
+// |S - q D| is bounded by evaluating it in BoundedDD. Nullopt when |D| <= ED.
+std::optional<BoundedDD> bounded_quotient(const BoundedDD& s, const BoundedDD& d) {
+  const double ed = bound_rounding_margin * d.error;
+  const double d_low = magnitude_lower_bound(d.value);
+  if (!(d_low > ed) || !s.finite() || !d.finite()) return std::nullopt;
+  const double q0 = s.value.hi / d.value.hi;
+  const DoubleDouble r0 = s.value - DoubleDouble(q0) * d.value;
+  const DoubleDouble q = DoubleDouble::fast_two_sum(q0, r0.hi / d.value.hi);
+  const BoundedDD residual = BoundedDD(s.value, 0.0) - BoundedDD(q, 0.0) * BoundedDD(d.value, 0.0);
+  const double numerator =
+      residual.magnitude() + residual.error + s.error + q.magnitude() * d.error;
+  return BoundedDD(q, bound_rounding_margin * bound_rounding_margin * numerator / (d_low - ed));
+}
+
+// An exact Mpzf number as a BoundedDD: hi its rounding, lo the midpoint of an enclosure of the
+// exact remainder x - hi, the error that enclosure's width.
+BoundedDD bounded_of(const CGAL::Mpzf& x) {
+  const double hi = CGAL::to_double(x);
+  if (!std::isfinite(hi)) return BoundedDD(hi);
+  const auto [low, high] = CGAL::to_interval(x - CGAL::Mpzf(hi));
+  return BoundedDD(DoubleDouble::fast_two_sum(hi, 0.5 * low + 0.5 * high), high - low);
+}
+
+// An implicit vertex accurate to `accuracy` times its largest coordinate. Cramer's rule in
+// BoundedDD first (about 2^-100 on ordinary planes); where three nearly dependent planes leave
+// it less accurate (or undecided), det X and det are evaluated exactly in CGAL::Mpzf and
+// divided in BoundedDD (about 2^-104). Nullopt when even then the quotient is not certified.
+std::optional<Vector3T<BoundedDD>> bounded_implicit_vertex(const HalfspacePolyhedron& h,
+                                                           const HalfspacePolyhedron::Vertex& v,
+                                                           const std::vector<detail::PlaneCoefficients<BoundedDD>>& planes,
+                                                           const Point3& o, double accuracy) {
+  const auto divide = [](const auto& x) -> std::optional<Vector3T<BoundedDD>> {
+    const auto px = bounded_quotient(x.scaled.x, x.det);
+    const auto py = bounded_quotient(x.scaled.y, x.det);
+    const auto pz = bounded_quotient(x.scaled.z, x.det);
+    if (!px || !py || !pz) return std::nullopt;
+    return Vector3T<BoundedDD>{*px, *py, *pz};
+  };
+  const auto accurate = [accuracy](const Vector3T<BoundedDD>& p) {
+    const double size = std::max({p.x.magnitude(), p.y.magnitude(), p.z.magnitude()});
+    return std::max({p.x.error, p.y.error, p.z.error}) <= accuracy * size;
+  };
+  const auto x = detail::three_plane_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
+  if (const auto p = divide(x); p && accurate(*p)) return p;
+  using T = CGAL::Mpzf;
+  const auto e = detail::three_plane_point(detail::plane_coefficients<T>(h.planes()[v.planes[0]], o),
+                                           detail::plane_coefficients<T>(h.planes()[v.planes[1]], o),
+                                           detail::plane_coefficients<T>(h.planes()[v.planes[2]], o));
+  return divide(detail::HomogeneousPoint<BoundedDD>{
+      {bounded_of(e.scaled.x), bounded_of(e.scaled.y), bounded_of(e.scaled.z)}, bounded_of(e.det)});
+}
+
+// Every vertex in the frame of o in BoundedDD: an input point's difference, an implicit point
+// by bounded_implicit_vertex to `accuracy`. Nullopt when a vertex is not certified.
+std::optional<std::vector<Vector3T<BoundedDD>>> bounded_frame_coordinates(const HalfspacePolyhedron& h,
+                                                                          const Point3& o, double accuracy) {
+  std::vector<detail::PlaneCoefficients<BoundedDD>> planes;
+  planes.reserve(h.planes().size());
+  for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<BoundedDD>(plane, o));
+  std::vector<Vector3T<BoundedDD>> out;
+  out.reserve(h.vertices().size());
+  for (const HalfspacePolyhedron::Vertex& v : h.vertices()) {
+    if (v.input) {
+      out.push_back(detail::difference3<BoundedDD>(v.point, o));
+      continue;
+    }
+    const auto x = bounded_implicit_vertex(h, v, planes, o, accuracy);
+    if (!x) return std::nullopt;
+    out.push_back(*x);
+  }
+  return out;
+}
+
+// w > 0 for certain: its value exceeds its bound plus `extra`.
+bool certainly_positive(const BoundedDD& w, double extra) {
+  return w.finite() && w.value.hi > 0.0 &&
+         magnitude_lower_bound(w.value) > bound_rounding_margin * (w.error + extra);
+}
+
+// The double nearest to V = V6 / 6 when the bounded V6 settles it. The candidate r is V6's
+// value divided by 6 with one correction by its remainder (within an ulp or so of V); r is the
+// answer when V lies strictly between the midpoints of r and its two neighbours, i.e.
+// 6 m- < V6 < 6 m+, each side decided by certainly_positive; the walk steps to the neighbour
+// while V6 is certainly beyond a midpoint. A tie or a near-tie (neither side certain), a
+// subnormal or non-finite candidate: nullopt.
+std::optional<double> nearest_double_of_sixth(const BoundedDD& v6) {
+  if (!v6.finite()) return std::nullopt;
+  const double q0 = v6.value.hi / 6.0;
+  const DoubleDouble remainder = v6.value - DoubleDouble::two_product(q0, 6.0);
+  double r = q0 + remainder.hi / 6.0;
+  const auto six_midpoint = [](double a, double b) {  // 3 (a + b), a + b exact in two_sum
+    return BoundedDD(DoubleDouble::two_sum(a, b), 0.0) * BoundedDD(3.0);
+  };
+  for (int steps = 0; steps < 4; ++steps) {
+    const double up = std::nextafter(r, HUGE_VAL), down = std::nextafter(r, -HUGE_VAL);
+    if (!std::isnormal(r) || !std::isfinite(up) || !std::isfinite(down)) return std::nullopt;
+    const BoundedDD above = six_midpoint(r, up) - v6;
+    const BoundedDD below = v6 - six_midpoint(r, down);
+    const bool under_up = certainly_positive(above, 0.0), over_down = certainly_positive(below, 0.0);
+    if (under_up && over_down) return r;
+    if (under_up && certainly_positive(BoundedDD(-below.value, below.error), 0.0)) {
+      r = down;
+    } else if (over_down && certainly_positive(BoundedDD(-above.value, above.error), 0.0)) {
+      r = up;
+    } else {
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
+// The Exact volume: the lazy stage, else the exact rational volume rounded once.
+double rounded_exact_volume(const HalfspacePolyhedron& h) {
+  if (const std::optional<double> lazy = detail::lazily_rounded_volume(h)) return *lazy;
+  return detail::NumberOps<ExactRational>::to_double(exact_volume(h));
+}
+
 }  // namespace
 
 template <NumberPolicy Policy>
@@ -265,7 +395,7 @@ template <NumberPolicy Policy>
 double HalfspacePolyhedron::volume() const {
   if (empty()) return 0.0;
   if constexpr (Policy::kind == PolicyKind::exact) {
-    return detail::NumberOps<ExactRational>::to_double(exact_volume(*this));
+    return rounded_exact_volume(*this);
   } else {
     return six_volume(*this, frame_coordinates(*this, frame_origin())) / 6.0;
   }
@@ -279,6 +409,19 @@ ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 
 namespace detail {
+
+// Two tries: vertices to 2^-80 (Mpzf only for nearly dependent planes), enough unless the
+// volume is small against the polyhedron's extent cubed; then every implicit vertex from Mpzf,
+// whose 2^-104 leaves the fan sum's own rounding as the limit.
+std::optional<double> lazily_rounded_volume(const HalfspacePolyhedron& h) {
+  if (h.empty()) return 0.0;
+  for (const double accuracy : {0x1p-80, 0.0}) {
+    const auto x = bounded_frame_coordinates(h, h.frame_origin(), accuracy);
+    if (!x) continue;
+    if (const std::optional<double> v = nearest_double_of_sixth(six_volume(h, *x))) return v;
+  }
+  return std::nullopt;
+}
 
 std::string exact_volume_string(const HalfspacePolyhedron& p) {
   if (p.empty()) return "0";

@@ -29,8 +29,13 @@
 //                            exact rationals, each coordinate rounded once.
 //   volume<P>()              divergence theorem: the sum over faces of the fan triangles'
 //                            signed tetrahedron volumes (1/6 det) about the first vertex, in
-//                            the same local frame; Exact: the exact rational volume rounded
-//                            once (detail/halfspace_exact.hpp exposes it unrounded).
+//                            the same local frame; Exact: the double nearest to the exact
+//                            rational volume, found lazily: the same sum in DoubleDouble with
+//                            a running error bound (implicit vertices by Cramer's rule, or
+//                            from their exact Mpzf homogeneous coordinates where the planes
+//                            are nearly dependent), accepted when the bound settles the
+//                            rounding; else the exact rational volume rounded once
+//                            (detail/halfspace_exact.hpp exposes both).
 
 #include <array>
 #include <cstdint>
