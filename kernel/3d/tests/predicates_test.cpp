@@ -18,6 +18,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "rockcontact/kernel/3d/predicates.hpp"
@@ -128,6 +129,38 @@ BOOST_AUTO_TEST_CASE(staged_policies_match_exact_reference) {
     BOOST_TEST_INFO("family " << name);
     BOOST_TEST(wrong_checked == 0);
     BOOST_TEST_MESSAGE("triple_sign " << name << ": Float wrong on " << wrong_float << " of " << inputs.size());
+  }
+}
+
+// TripleSigns (one normal against many points) gives triple_sign's sign under every policy and
+// counts the same calls, on every input family: its filter is triple_sign's, computed in the
+// same order, so the same inputs reach the interval stage.
+BOOST_AUTO_TEST_CASE(triple_signs_equal_triple_sign) {
+  Generator g(seed_for("triple_signs_equal_triple_sign", 20261127));
+  const auto check = [](const auto policy, const TripleInput& t) {
+    using Policy = std::remove_cv_t<decltype(policy)>;
+    const rk::TripleSigns<Policy> signs(t.p0, t.p1, t.q0, t.q1, t.r0);
+    const auto before = rk::predicate_counters();
+    const Sign batched = signs(t.r1);
+    [[maybe_unused]] const auto batched_counts = rk::predicate_counters() - before;
+    const auto middle = rk::predicate_counters();
+    const Sign single = triple_under<Policy>(t);
+    [[maybe_unused]] const auto single_counts = rk::predicate_counters() - middle;
+    BOOST_TEST((batched == single));
+#if ROCKCONTACT_PREDICATE_STATS
+    BOOST_TEST((batched_counts.calls == single_counts.calls));
+    BOOST_TEST((batched_counts.interval_fallbacks == single_counts.interval_fallbacks));
+#endif
+  };
+  for (const auto& [name, inputs] : families(g, 500)) {
+    BOOST_TEST_CONTEXT("family " << name) {
+      for (const TripleInput& t : inputs) {
+        check(rk::Float{}, t);
+        check(rk::Filtered{}, t);
+        check(rk::Exact{}, t);
+        check(rk::Checked{}, t);
+      }
+    }
   }
 }
 

@@ -22,9 +22,10 @@ enum class Gap { none, zero, positive };  // not a separating plane / weakly / s
 template <NumberPolicy Policy>
 Gap face_gap(const ConvexPolyhedron& p, const ConvexPolyhedron::Face& face, const ConvexPolyhedron& q) {
   const Point3 &f0 = p[face[0]], &f1 = p[face[1]], &f2 = p[face[2]];
+  const TripleSigns<Policy> orient(f0, f1, f0, f2, f0);  // orient3d(f0, f1, f2, x)
   Gap gap = Gap::positive;
   for (const Point3& x : q.vertices()) {
-    const Sign s = orient3d<Policy>(f0, f1, f2, x);
+    const Sign s = orient(x);
     if (s == Sign::negative) return Gap::none;
     if (s == Sign::zero) gap = Gap::zero;
   }
@@ -39,10 +40,11 @@ Gap face_gap(const ConvexPolyhedron& p, const ConvexPolyhedron::Face& face, cons
 template <NumberPolicy Policy>
 Sign side(const Point3& e0, const Point3& e1, const Point3& f0, const Point3& f1, const Point3& origin,
           const ConvexPolyhedron& p, const ConvexPolyhedron::Edge& edge) {
+  const TripleSigns<Policy> triple(e0, e1, f0, f1, origin);
   Sign side = Sign::zero;
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (i == edge.first || i == edge.second) continue;
-    const Sign s = triple_sign<Policy>(e0, e1, f0, f1, origin, p[i]);
+    const Sign s = triple(p[i]);
     if (s == Sign::zero) continue;
     if (side == Sign::zero) {
       side = s;
