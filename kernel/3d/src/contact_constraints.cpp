@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 #include "rockcontact/kernel/core/detail/staged_sign.hpp"
@@ -509,14 +510,13 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
   return d;
 }
 
-// The common non-zero sign of triple(a, b, c, d, origin, x) over the given points, or zero
-// when both signs occur or all are zero.
+// The common non-zero sign of triple(origin -> x) against one normal over the given points, or
+// zero when both signs occur or all are zero.
 template <NumberPolicy Policy>
-Sign common_side(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& origin,
-                 std::initializer_list<Point3> points) {
+Sign common_side(const TripleSigns<Policy>& triple, const Point3& origin, std::initializer_list<Point3> points) {
   Sign side = Sign::zero;
   for (const Point3& p : points) {
-    const Sign s = triple_sign<Policy>(a, b, c, d, origin, p);
+    const Sign s = triple(origin, p);
     if (s == Sign::zero) continue;
     if (side != Sign::zero && s != side) return Sign::zero;
     side = s;
@@ -594,12 +594,13 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   // Parallel edges (n = 0) make every triple product zero, so side_x == 0 rejects them too.
   const auto [xf0, xf1] = x.edge_faces[e];
   const auto [yf0, yf1] = y.edge_faces[g];
-  const Sign side_x = common_side<Policy>(a, b, c, d, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
+  const TripleSigns<Policy> triple(a, b, c, d);
+  const Sign side_x = common_side(triple, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
   if (side_x == Sign::zero) return std::nullopt;
-  const Sign side_y = common_side<Policy>(a, b, c, d, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
+  const Sign side_y = common_side(triple, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
   if (side_y != -side_x) return std::nullopt;
   const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1, Plane::Source::edge_pair, e, g};
-  const Sign gap_sign = -side_x * triple_sign<Policy>(a, b, c, d, a, c);
+  const Sign gap_sign = -side_x * triple(a, c);
   const auto gap = [=](auto as) {
     using T = typename decltype(as)::type;
     return dot(plane_normal<T>(plane), sub<T>(a, c));
@@ -639,8 +640,12 @@ void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::
       out.push_back(std::move(*d));
     }
   }
+  // An edge-edge contact needs planes through e and g supporting cp and tp on opposite sides:
+  // e x g is then a facet normal of the Minkowski difference, which the Gauss-map test keeps.
+  const detail::MinkowskiEdgePairs<Policy> edge_pairs(*cp.poly, *tp.poly);
   for (std::uint32_t e = 0; e < cp.poly->edges().size(); ++e) {
     for (std::uint32_t g = 0; g < tp.poly->edges().size(); ++g) {
+      if (!edge_pairs.may_be_facet(e, g)) continue;
       if (auto d = edge_decision<Policy>(cp, e, tp, g, tolerance)) out.push_back(std::move(*d));
     }
   }

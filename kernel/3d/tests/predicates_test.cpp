@@ -132,16 +132,16 @@ BOOST_AUTO_TEST_CASE(staged_policies_match_exact_reference) {
   }
 }
 
-// TripleSigns (one normal against many points) gives triple_sign's sign under every policy and
+// TripleSigns (one normal against many point pairs) gives triple_sign's sign under every policy and
 // counts the same calls, on every input family: its filter is triple_sign's, computed in the
 // same order, so the same inputs reach the interval stage.
 BOOST_AUTO_TEST_CASE(triple_signs_equal_triple_sign) {
   Generator g(seed_for("triple_signs_equal_triple_sign", 20261127));
   const auto check = [](const auto policy, const TripleInput& t) {
     using Policy = std::remove_cv_t<decltype(policy)>;
-    const rk::TripleSigns<Policy> signs(t.p0, t.p1, t.q0, t.q1, t.r0);
+    const rk::TripleSigns<Policy> signs(t.p0, t.p1, t.q0, t.q1);
     const auto before = rk::predicate_counters();
-    const Sign batched = signs(t.r1);
+    const Sign batched = signs(t.r0, t.r1);
     [[maybe_unused]] const auto batched_counts = rk::predicate_counters() - before;
     const auto middle = rk::predicate_counters();
     const Sign single = triple_under<Policy>(t);

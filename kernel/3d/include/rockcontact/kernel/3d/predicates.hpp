@@ -113,18 +113,18 @@ Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d
   return triple_sign<Policy>(a, b, a, c, a, d);
 }
 
-// triple_sign(p0, p1, q0, q1, r0, x) for many points x against one normal (p1 - p0) x (q1 - q0)
-// through r0: a face plane against a block's vertices (orient3d(a, b, c, x) is
-// TripleSigns(a, b, a, c, a)(x)), an edge-edge plane against them. The normal's products, its
-// magnitudes and their underflow checks are computed once; each call evaluates only the terms in
-// x. The value, the filter's bound and so every sign and counter are those of triple_sign, bit
-// for bit: the same operations in the same order. The points are referred to, not copied: they
-// must outlive the object.
+// triple_sign(p0, p1, q0, q1, r0, r1) for many (r0, r1) against one normal (p1 - p0) x (q1 - q0):
+// a face plane against a block's vertices (orient3d(a, b, c, x) is TripleSigns(a, b, a, c)(a, x)),
+// an edge-edge plane against them, a facet normal against another block's edges. The normal's
+// products, its magnitudes and their underflow checks are computed once; each call evaluates
+// only the terms in r1 - r0. The value, the filter's bound and so every sign and counter are
+// those of triple_sign, bit for bit: the same operations in the same order. The points are
+// referred to, not copied: they must outlive the object.
 template <NumberPolicy Policy>
 class TripleSigns {
  public:
-  TripleSigns(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1, const Point3& r0)
-      : p0_(p0), p1_(p1), q0_(q0), q1_(q1), r0_(r0) {
+  TripleSigns(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1)
+      : p0_(p0), p1_(p1), q0_(q0), q1_(q1) {
     const double ux = p1.x - p0.x, uy = p1.y - p0.y, uz = p1.z - p0.z;
     const double vx = q1.x - q0.x, vy = q1.y - q0.y, vz = q1.z - q0.z;
     const double a1 = uy * vz, a2 = uz * vy, b1 = uz * vx, b2 = ux * vz, c1 = ux * vy, c2 = uy * vx;
@@ -140,12 +140,13 @@ class TripleSigns {
                 product_is_relative(ux, vy, c1) && product_is_relative(uy, vx, c2);
   }
 
-  Sign operator()(const Point3& x) const {
+  // triple_sign<Policy>(p0, p1, q0, q1, r0, r1).
+  Sign operator()(const Point3& r0, const Point3& r1) const {
     if constexpr (Policy::kind == PolicyKind::checked) {
-      return triple_sign<Policy>(p0_, p1_, q0_, q1_, r0_, x);
+      return triple_sign<Policy>(p0_, p1_, q0_, q1_, r0, r1);
     } else {
       detail::count_call(PredicateKind::triple);
-      const double wx = x.x - r0_.x, wy = x.y - r0_.y, wz = x.z - r0_.z;
+      const double wx = r1.x - r0.x, wy = r1.y - r0.y, wz = r1.z - r0.z;
       const double tx = nx_ * wx, ty = ny_ * wy, tz = nz_ * wz;
       const double value = (tx + ty) + tz;
       if constexpr (Policy::kind == PolicyKind::float_) {
@@ -161,13 +162,13 @@ class TripleSigns {
           if (-value > bound) return Sign::negative;
           if (magnitude == 0.0) return Sign::zero;
         }
-        return detail::triple_sign_interval_exact(p0_, p1_, q0_, q1_, r0_, x);
+        return detail::triple_sign_interval_exact(p0_, p1_, q0_, q1_, r0, r1);
       }
     }
   }
 
  private:
-  const Point3 &p0_, &p1_, &q0_, &q1_, &r0_;
+  const Point3 &p0_, &p1_, &q0_, &q1_;
   double nx_, ny_, nz_;  // the computed normal
   double mx_, my_, mz_;  // |a1| + |a2| and so on: the magnitude's factors of |wx|, |wy|, |wz|
   bool relative_;        // no product of the normal underflowed

@@ -22,10 +22,10 @@ enum class Gap { none, zero, positive };  // not a separating plane / weakly / s
 template <NumberPolicy Policy>
 Gap face_gap(const ConvexPolyhedron& p, const ConvexPolyhedron::Face& face, const ConvexPolyhedron& q) {
   const Point3 &f0 = p[face[0]], &f1 = p[face[1]], &f2 = p[face[2]];
-  const TripleSigns<Policy> orient(f0, f1, f0, f2, f0);  // orient3d(f0, f1, f2, x)
+  const TripleSigns<Policy> orient(f0, f1, f0, f2);  // orient(f0, x) = orient3d(f0, f1, f2, x)
   Gap gap = Gap::positive;
   for (const Point3& x : q.vertices()) {
-    const Sign s = orient(x);
+    const Sign s = orient(f0, x);
     if (s == Sign::negative) return Gap::none;
     if (s == Sign::zero) gap = Gap::zero;
   }
@@ -40,11 +40,11 @@ Gap face_gap(const ConvexPolyhedron& p, const ConvexPolyhedron::Face& face, cons
 template <NumberPolicy Policy>
 Sign side(const Point3& e0, const Point3& e1, const Point3& f0, const Point3& f1, const Point3& origin,
           const ConvexPolyhedron& p, const ConvexPolyhedron::Edge& edge) {
-  const TripleSigns<Policy> triple(e0, e1, f0, f1, origin);
+  const TripleSigns<Policy> triple(e0, e1, f0, f1);
   Sign side = Sign::zero;
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (i == edge.first || i == edge.second) continue;
-    const Sign s = triple(p[i]);
+    const Sign s = triple(origin, p[i]);
     if (s == Sign::zero) continue;
     if (side == Sign::zero) {
       side = s;
@@ -103,7 +103,8 @@ class MinkowskiEdgePairs {
     std::vector<Sign> out;
     out.reserve(p.faces().size() * q.edges().size());
     for (const auto& g : p.faces()) {
-      for (const auto& [e0, e1] : q.edges()) out.push_back(triple_sign<Policy>(p[g[0]], p[g[1]], p[g[0]], p[g[2]], q[e0], q[e1]));
+      const TripleSigns<Policy> normal(p[g[0]], p[g[1]], p[g[0]], p[g[2]]);
+      for (const auto& [e0, e1] : q.edges()) out.push_back(normal(q[e0], q[e1]));
     }
     return out;
   }
