@@ -154,6 +154,7 @@
 
 #include "rockcontact/contact/friction/law.hpp"
 #include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/dynamics/material.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
@@ -162,12 +163,6 @@ namespace rockcontact::dynamics {
 
 using kernel::Point2;
 using kernel::Vector2;
-
-struct Material {
-  double density = 2000.0;        // kg/m³, > 0
-  double youngs_modulus = 1.0e9;  // Pa, > 0
-  double poisson_ratio = 0.25;    // -, in (-1, 0.5)
-};
 
 enum class PlaneMode { stress, strain };
 
