@@ -6,32 +6,13 @@
 
 #include <Eigen/Geometry>
 
+#include "rockcontact/kernel/3d/moments.hpp"
+
 namespace rockcontact::dynamics::detail {
 namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-
-Vector3d local(const kernel::Point3& p, const kernel::Point3& o) {
-  return {p.x - o.x, p.y - o.y, p.z - o.z};
-}
-
-// Sums over the tetrahedra (o, a, b, c) of D, D s and D (a aᵀ + b bᵀ + c cᵀ + s sᵀ), in the
-// frame of o; divided by 6, 24 and 120 once at the end (header, "Central moments").
-struct LocalSums {
-  double d = 0.0;
-  Vector3d first = Vector3d::Zero();
-  Matrix3d second = Matrix3d::Zero();
-};
-
-void add_tetrahedron(const Vector3d& a, const Vector3d& b, const Vector3d& c, LocalSums& sums) {
-  const double d = a.dot(b.cross(c));
-  const Vector3d s = a + b + c;
-  sums.d += d;
-  sums.first += d * s;
-  sums.second +=
-      d * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
-}
 
 Matrix3d skew(const Vector3d& r) {
   Matrix3d k;
@@ -58,22 +39,24 @@ Matrix3d rotation_minus_identity(const Vector3d& r) {
 CentralMoments3d central_moments3d(std::span<const kernel::ConvexPolyhedron> parts) {
   assert(!parts.empty());
   const kernel::Point3 o = parts.front()[0];
-  LocalSums sums;
+  double volume = 0.0;
+  Vector3d first = Vector3d::Zero();
+  Matrix3d second = Matrix3d::Zero();
   for (const kernel::ConvexPolyhedron& part : parts) {
-    for (const kernel::ConvexPolyhedron::Face& face : part.faces()) {
-      const Vector3d a = local(part[face[0]], o);
-      for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-        add_tetrahedron(a, local(part[face[k]], o), local(part[face[k + 1]], o), sums);
-      }
-    }
+    const kernel::Moments3 m = kernel::moments_about(part, o);
+    volume += m.volume;
+    first += Vector3d(m.first.x, m.first.y, m.first.z);
+    Matrix3d s;
+    s << m.xx, m.xy, m.zx,  //
+        m.xy, m.yy, m.yz,   //
+        m.zx, m.yz, m.zz;
+    second += s;
   }
-  const double volume = sums.d / 6;
-  const Vector3d first = sums.first / 24;
-  CentralMoments3d m;
-  m.volume = volume;
-  m.centroid = Vector3d(o.x, o.y, o.z) + first / volume;
-  m.second = sums.second / 120 - first * first.transpose() / volume;
-  return m;
+  CentralMoments3d out;
+  out.volume = volume;
+  out.centroid = Vector3d(o.x, o.y, o.z) + first / volume;
+  out.second = second - first * first.transpose() / volume;
+  return out;
 }
 
 Matrix12 mass_matrix(const CentralMoments3d& m, double mass) {

@@ -15,15 +15,11 @@
 //
 // ## Central moments
 // A block is a union of convex parts moving as one body (a non-convex block is several parts).
-// Its moments are the sums of its parts', integrated in the frame of o = the first vertex of its
-// first part: the divergence theorem over each part's facets fanned into triangles (f0, fk, fk+1),
-// each making with o a tetrahedron of signed volume D / 6 (D = det[a b c], the triangle's
-// corners relative to o; the signed volumes of a closed surface sum to its volume whatever o is):
-//   ∫ dV = Σ D / 6,   ∫ x_i dV = Σ D s_i / 24,   ∫ x_i x_j dV = Σ D (a_i a_j + b_i b_j + c_i c_j
-//   + s_i s_j) / 120,   s = a + b + c
-// (the formula of kernel/3d/moments.hpp). kernel::moments() shifts them back to the global frame,
-// where the central moments cancel (of a 1 m block 10^6 m out, about 3 digits survive); here they
-// stay local, and the central second moments follow by the parallel-axis relation
+// Its moments are the sums of its parts' moments about one point o = the first vertex of its
+// first part (kernel::moments_about: the divergence theorem in the frame of o). The global
+// moments of kernel::moments() would lose the central ones to cancellation (of a 1 m block
+// 10^6 m out, about 3 digits survive); about o they do not, and the central second moments
+// follow by the parallel-axis relation
 //   S_ij = ∫ (x_i - c_i)(x_j - c_j) dV = m_ij - m_i m_j / V,
 // c = o + m / V, over distances of block size (cancellation of a few bits at most).
 //

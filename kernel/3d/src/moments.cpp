@@ -34,8 +34,7 @@ void add_tetrahedron(const Vec& a, const Vec& b, const Vec& c, LocalSums& sums) 
 
 }  // namespace
 
-Moments3 moments(const ConvexPolyhedron& block) {
-  const Point3 o = block[0];
+Moments3 moments_about(const ConvexPolyhedron& block, const Point3& o) {
   LocalSums sums;
   for (const ConvexPolyhedron::Face& face : block.faces()) {
     const Vec a = local(block[face[0]], o);
@@ -43,10 +42,21 @@ Moments3 moments(const ConvexPolyhedron& block) {
       add_tetrahedron(a, local(block[face[k]], o), local(block[face[k + 1]], o), sums);
     }
   }
-  const double v = sums.d / 6;
-  const Vec m{sums.first[0] / 24, sums.first[1] / 24, sums.first[2] / 24};
-  std::array<double, 6> mm{};
-  for (std::size_t k = 0; k < mm.size(); ++k) mm[k] = sums.second[k] / 120;
+  Moments3 r;
+  r.volume = sums.d / 6;
+  r.first = {sums.first[0] / 24, sums.first[1] / 24, sums.first[2] / 24};
+  r.xx = sums.second[0] / 120, r.yy = sums.second[1] / 120, r.zz = sums.second[2] / 120;
+  r.xy = sums.second[3] / 120, r.yz = sums.second[4] / 120, r.zx = sums.second[5] / 120;
+  return r;
+}
+
+Moments3 moments(const ConvexPolyhedron& block) {
+  const Point3 o = block[0];
+  const Moments3 local_moments = moments_about(block, o);
+  const double v = local_moments.volume;
+  const Vec m{local_moments.first.x, local_moments.first.y, local_moments.first.z};
+  const std::array<double, 6> mm{local_moments.xx, local_moments.yy, local_moments.zz,
+                                 local_moments.xy, local_moments.yz, local_moments.zx};
 
   // Parallel-axis shift back to the global frame.
   const Vec oo{o.x, o.y, o.z};

@@ -250,3 +250,24 @@ BOOST_AUTO_TEST_CASE(rotated_box_far_from_the_origin) {
   const ExactMoments e = transform(box_moments({0, 0, 0}, hi), t);
   BOOST_TEST(std::fabs(m.centroid().x - mpq_class(e.first[0] / e.volume).get_d()) <= 64 * u * 2e6);
 }
+
+// moments_about: the integrals of x - o, for the rotated box 10^6 m out about one of its own
+// vertices, against the exact moments of the box translated by -o (the reference shift is
+// exact in rationals). The tolerance is the top of file's with R the box's own size (a few m),
+// not 10^6 m: no shift back to the global frame takes place.
+BOOST_AUTO_TEST_CASE(moments_about_a_point_near_the_block) {
+  const Point3 hi{65.0 / 64, 130.0 / 64, 195.0 / 64};
+  const Point3 t{1e6 + 0.5, -1e6 - 1.25, 1e6 + 2};
+  const ConvexPolyhedron far = rotated_box("rotated box at 1e6 m", hi, t);
+  const Point3 o = far[3];
+  const rk::Moments3 m = rk::moments_about(far, o);
+  const ExactMoments e = transform(box_moments({0, 0, 0}, hi), {t.x - o.x, t.y - o.y, t.z - o.z});
+  const double r = 8.0;  // a vertex's distance from o plus the diameter, m, bounded
+  const double v = e.volume.get_d();
+  BOOST_TEST(std::fabs(m.volume - v) <= 64 * u * v);
+  const std::array<double, 3> first{m.first.x, m.first.y, m.first.z};
+  for (int i = 0; i < 3; ++i) BOOST_TEST(std::fabs(first[i] - e.first[i].get_d()) <= 64 * u * v * r);
+  BOOST_TEST(std::fabs(m.xx - e.second[0][0].get_d()) <= 64 * u * v * r * r);
+  BOOST_TEST(std::fabs(m.xy - e.second[0][1].get_d()) <= 64 * u * v * r * r);
+  BOOST_TEST(std::fabs(m.zz - e.second[2][2].get_d()) <= 64 * u * v * r * r);
+}

@@ -40,10 +40,17 @@ struct Moments3 {
   double xy = 0.0;      // ∫ x y dV, m⁵
   double yz = 0.0;      // ∫ y z dV, m⁵
   double zx = 0.0;      // ∫ z x dV, m⁵
-  // The centre of mass of a uniform block, m.
+  // The centre of mass of a uniform block, m (in the frame of the origin for moments_about).
   Point3 centroid() const { return {first.x / volume, first.y / volume, first.z / volume}; }
 };
 
 Moments3 moments(const ConvexPolyhedron& block);
+
+// The same integrals in the frame of `origin`: of x - origin instead of x (first() is then
+// ∫ (x - o) dV, the second moments ∫ (x_i - o_i)(x_j - o_j) dV), with the tetrahedra fanned from
+// `origin`, so no shift is needed. With `origin` near the block (a vertex, or a vertex of another
+// part of the same body) the central moments follow from them without cancellation:
+// S_ij = m_ij - m_i m_j / V. Additive over the parts of a body taken about one origin.
+Moments3 moments_about(const ConvexPolyhedron& block, const Point3& origin);
 
 }  // namespace rockcontact::kernel
