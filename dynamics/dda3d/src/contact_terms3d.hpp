@@ -17,9 +17,9 @@
 // with r_acc the spring's accumulated tangential stretch (of p_j relative to p_i) carried from the
 // previous steps, fn* the normal force of the previous iteration (-kn d*, compression > 0; in
 // the first iteration of a step that of the last step, -kn d0 for points that follow the blocks)
-// and v* the assumed sliding direction of p_j relative to p_i (§2.3). A spring along a unit direction e with offset
-// s0 (d0 for the normal, t . r_acc for each vector t of a tangent basis) has the energy
-// ½ k (s0 + eᵀ Δr)², so with g_i = T_iᵀ e and g_j = T_jᵀ e it adds
+// and v* the assumed sliding direction of p_j relative to p_i (§2.3). A spring along a unit
+// direction e with offset s0 (d0 for the normal, t . r_acc for each vector t of a tangent
+// basis) has the energy ½ k (s0 + eᵀ Δr)², so with g_i = T_iᵀ e and g_j = T_jᵀ e it adds
 //   K_ii += k g_i g_iᵀ, K_ij -= k g_i g_jᵀ, K_jj += k g_j g_jᵀ, F_i += k s0 g_i, F_j -= k s0 g_j
 // (K_ji = K_ijᵀ): the Hessian and the negative gradient at D = 0. The friction term is a load
 // only (F_i += f T_iᵀ v, F_j -= f T_jᵀ v), so K stays symmetric positive semidefinite (§3.5).
