@@ -41,6 +41,7 @@ install(DIRECTORY
     ${PROJECT_SOURCE_DIR}/contact/generalized3d/include/
     ${PROJECT_SOURCE_DIR}/contact/embed/include/
     ${PROJECT_SOURCE_DIR}/dynamics/dda2d/include/
+    ${PROJECT_SOURCE_DIR}/dynamics/dda3d/include/
     ${PROJECT_SOURCE_DIR}/dynamics/io/include/
     ${PROJECT_SOURCE_DIR}/robustness_tests/generators/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

@@ -1,0 +1,182 @@
+#pragma once
+// Implicit 3D DDA with the generalized contact model (seed 001 §3-§5; the block kinematics and
+// the global equation of Shi's 3D DDA).
+//
+// Each movable block carries the increments over a step of
+//   D = (u0, v0, w0, rx, ry, rz, ex, ey, ez, gyz, gzx, gxy)      (eq. 9; rigid blocks: 6)
+// with u(x) = T(x - c) D (eq. 10-12). A step from t_n to t_n+1 = t_n + h:
+//   1. contacts (§4.1): candidate pairs whose boxes, widened by the detection range, overlap ->
+//      the kernel's generalized constraints of each pair of blocks (two contact points, a plane,
+//      feature ids; kernel/3d/contact_constraints.hpp) closer than the detection range. A
+//      constraint that was in the list at the previous step, identified by its pair and its two
+//      features, keeps its mode and tangential spring (§4.2); a new one starts open when its gap
+//      is positive, locked otherwise;
+//   2. the global equation (eq. 13), one sparse symmetric system in the unknowns of every movable
+//      block (fixed blocks have none):
+//        (2 M / h² + K_e + K_c) D = F_g + (2 / h) M v_n - V σ_n + F_c
+//      M = ρ ∫ TᵀT dV, K_e = V C on the strain unknowns, F_g the gravity load, σ_n the stress at
+//      t_n, and K_c, F_c the penalty terms of the closed constraints (eq. 24 normal, eq. 29
+//      tangent locked, eq. 32 the explicit friction force of a sliding one); solved by
+//      Eigen::SimplicialLDLT;
+//   3. the open-close iteration (§4.3): every constraint's mode is re-decided from the solution
+//      (contact_terms3d.hpp: Table 2 with the project's elastoplastic tangential spring); while a
+//      mode changes the system is re-assembled and solved again, at most
+//      Dda3dParams::max_open_close times;
+//   4. step control (§5.2, eq. 50): the step is cut (h / 2) and redone from t_n when the
+//      iteration does not converge or when a vertex moves farther than max_displacement_ratio
+//      times the scene's size (the diagonal of its bounding box at the start), and grows back by
+//      a factor 1.5 per accepted step up to Dda3dParams::dt;
+//   5. update: v_n+1 = 2 D / h - v_n (the constant-acceleration step of DDA), σ_n+1 = σ_n + C ε,
+//      every vertex moved by x -> c + u0 + R(r) (I + ε) (x - c) with the exact rotation R(r)
+//      (block_matrices3d.hpp): a spinning block keeps its volume, where the first-order map
+//      I + T would inflate it by 1 + |r|² a step (§5.2); the constraints' springs commit.
+// Contact area of a constraint (for cohesion and tensile strength, Pa times m²): a vertex-face
+// constraint stands for its face's area divided among the vertex-face constraints of the pair
+// on that face; the other types stand for no area (cohesion and tensile strength act through
+// the faces a contact spreads over, not through single edges or vertices).
+//
+// Energy: kinetic ½ vᵀ M v, gravitational -m g·(c - c_0), strain ½ V σᵀ C⁻¹ σ, the penalty
+// springs ½ kn d² + ½ kt |s|² of the closed constraints, friction dissipated (the sliding
+// force times the slip, the tangential motion less what the spring took up), and the
+// integrator's own dissipation as its own term. The step applies the forces of its end: the
+// kinetic energy changes by exactly f_1 · D (v_n+1 - v_n = (2 / h)(D / h - v_n) and
+// D = h (v_n + v_n+1) / 2), where the force laws store or dissipate
+//   elastic: ΔU_e = -f_e,1 · D - ½ Dᵀ K_e D           (the scheme removes ½ Dᵀ K_e D),
+//   contact: ΔU_c + W_slip, from the springs' own law at both ends of the step,
+// so per step the integrator removes ½ Dᵀ K_e D plus, per constraint, -(ΔU_c + W_slip) - f_c,1 · Δr:
+// a contact closing within a step is charged its end force over the whole relative motion, the
+// main loss of an impact (a cube dropped 5 cm onto a slab with kn = 1e9 N/m and h = 1 ms comes
+// to rest, and the term takes up all of the 1.2 kJ released). total() is then constant up to
+// rounding: a test asserts it, which checks the solve against the scheme's identity.
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rockcontact/dynamics/material.hpp"
+#include "rockcontact/kernel/3d/convex_polyhedron.hpp"
+#include "rockcontact/kernel/3d/point3.hpp"
+#include "rockcontact/kernel/core/number_policy.hpp"
+#include "rockcontact/kernel/core/predicate_stats.hpp"
+
+namespace rockcontact::dynamics {
+
+struct Block3dSpec {
+  std::string id;  // non-empty, unique; names the block in every message
+  // Convex parts moving as one body (one part for a convex block), valid polyhedra, metres.
+  std::vector<kernel::ConvexPolyhedron> parts;
+  std::string group;  // selects the interfaces that apply to it ("" : none)
+  Material material;
+  bool fixed = false;  // takes part in contact, never moves
+  bool rigid = false;  // 6 unknowns: no strain
+  // (vx, vy, vz, wx, wy, wz) of the centroid, m/s and rad/s (zero for a fixed block).
+  std::array<double, 6> velocity{};
+};
+
+// The contact properties between blocks of two groups, replacing the law's for every pair with
+// one block in each (the order of `groups` does not matter); kn and kt stay the law's.
+struct Interface3d {
+  std::array<std::string, 2> groups;
+  double friction_angle_deg = 0.0;  // degrees, in [0, 90)
+  double cohesion = 0.0;            // Pa, >= 0
+  double tensile_strength = 0.0;    // Pa, >= 0
+};
+
+struct ContactLaw3d {
+  double kn = 1.0e10;               // normal penalty, N/m per constraint, finite > 0
+  double kt = 1.0e9;                // tangential penalty, N/m per constraint, finite > 0
+  double friction_angle_deg = 0.0;  // degrees, in [0, 90)
+  double cohesion = 0.0;            // Pa, >= 0
+  double tensile_strength = 0.0;    // Pa, >= 0
+  kernel::PolicyKind policy = kernel::PolicyKind::filtered;
+  std::vector<Interface3d> interfaces;  // at most one per pair of groups
+};
+
+struct Dda3dParams {
+  double dt = 1.0e-3;                         // s, the largest step, finite > 0
+  std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s²
+  double max_displacement_ratio = 1.0e-3;     // of the scene's size per step, in (0, 1)
+  std::size_t max_open_close = 30;            // open-close iterations per step before a cut, >= 1
+  double min_dt_ratio = 1.0e-6;               // the step may shrink to dt times this, in (0, 1)
+};
+
+struct Block3dState {
+  std::string id;
+  std::vector<kernel::ConvexPolyhedron> parts;  // current
+  kernel::Point3 centroid;                      // current, m
+  std::array<double, 3> rotation{};  // since the start: angle (rad) times the unit axis
+  // (vx, vy, vz, wx, wy, wz, and for a deformable block the strain rates), SI units.
+  std::vector<double> velocity;
+  std::array<double, 6> stress{};  // (σx, σy, σz, τyz, τzx, τxy), Pa; zero for rigid blocks
+  double volume = 0.0;             // m³
+  double mass = 0.0;               // kg, constant
+  bool fixed = false;
+  bool rigid = false;
+};
+
+enum class ContactMode3d { open, stick, slide };  // stick is the paper's "locked"
+
+// A constraint in the contact list at the current instant (open ones included).
+struct Contact3dState {
+  std::size_t block_a = 0;  // the kernel's cp: the lower block index of the pair
+  std::size_t block_b = 0;  // tp
+  kernel::Point3 point;     // contact point on block_b, m
+  kernel::Point3 normal;    // unit, from block_a towards block_b
+  double gap = 0.0;         // m, negative = penetration, at the end of the last step
+  double normal_force = 0.0;     // on block_b along the normal, N (compression > 0)
+  double tangential_force = 0.0; // magnitude, N
+  ContactMode3d mode = ContactMode3d::open;
+};
+
+struct Energies3d {  // J, at the current instant, relative to the start
+  double kinetic = 0.0;
+  double gravitational = 0.0;
+  double strain = 0.0;
+  double contact = 0.0;                  // held by the penalty springs
+  double friction_dissipated = 0.0;
+  double numerical_dissipated = 0.0;     // removed by the implicit integrator (header)
+  double total() const {
+    return kinetic + gravitational + strain + contact + friction_dissipated + numerical_dissipated;
+  }
+};
+
+struct Step3dStats {
+  double dt = 0.0;                       // s, of the last accepted step
+  std::size_t open_close_iterations = 0; // of the last accepted step
+  std::size_t cuts = 0;                  // step cuts since the start
+  std::size_t constraints = 0;           // in the contact list
+  std::size_t closed = 0;                // of which closed
+};
+
+// The run cannot go on meaningfully; what() says why and with which numbers.
+class Stability3dError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Dda3d {
+ public:
+  // Validates the blocks, law and params (std::invalid_argument naming the block or field).
+  Dda3d(std::vector<Block3dSpec> blocks, ContactLaw3d law, Dda3dParams params);
+
+  // One accepted step, cut as often as needed; throws Stability3dError when the step would have
+  // to shrink below min_dt_ratio * dt, or on a non-finite solution.
+  void step();
+
+  double time() const noexcept;
+  std::size_t steps() const noexcept;
+  const std::vector<Block3dState>& blocks() const noexcept;
+  std::vector<Contact3dState> contacts() const;
+  Energies3d energies() const;
+  const Step3dStats& last_step() const noexcept;
+  kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
+
+ private:
+  struct Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace rockcontact::dynamics
