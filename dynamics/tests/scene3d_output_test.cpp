@@ -1,10 +1,10 @@
 #define BOOST_TEST_MODULE scene3d_output
 #include "rockcontact/dynamics/io/scene3d_output.hpp"
 
+#include <array>
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 #include <boost/test/unit_test.hpp>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -64,9 +64,16 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& file, const std::
 
 json box(std::array<double, 3> lo, std::array<double, 3> hi) {
   return {{"vertices",
-           {{lo[0], lo[1], lo[2]}, {hi[0], lo[1], lo[2]}, {hi[0], hi[1], lo[2]}, {lo[0], hi[1], lo[2]},
-            {lo[0], lo[1], hi[2]}, {hi[0], lo[1], hi[2]}, {hi[0], hi[1], hi[2]}, {lo[0], hi[1], hi[2]}}},
-          {"faces", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
+           {{lo[0], lo[1], lo[2]},
+            {hi[0], lo[1], lo[2]},
+            {hi[0], hi[1], lo[2]},
+            {lo[0], hi[1], lo[2]},
+            {lo[0], lo[1], hi[2]},
+            {hi[0], lo[1], hi[2]},
+            {hi[0], hi[1], hi[2]},
+            {lo[0], hi[1], hi[2]}}},
+          {"faces",
+           {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
 }
 
 json block(const std::string& id, std::array<double, 3> lo, std::array<double, 3> hi, bool fixed) {
@@ -80,11 +87,13 @@ json block(const std::string& id, std::array<double, 3> lo, std::array<double, 3
 
 // dt 1 ms, kn = kt = 1e9 N/m, friction 30°, `blocks` as given.
 json scene_with(json blocks, double duration, std::size_t every) {
-  json scene = {{"dimension", 3},
-                {"time", {{"dt", 1e-3}, {"duration", duration}}},
-                {"materials", {{"rock", {{"density", density}, {"youngs_modulus", 1e10}, {"poisson_ratio", 0.25}}}}},
-                {"contact", {{"law", "penalty"}, {"kn", 1e9}, {"kt", 1e9}, {"friction_angle_deg", 30}}},
-                {"output", {{"every", every}}}};
+  json scene = {
+      {"dimension", 3},
+      {"time", {{"dt", 1e-3}, {"duration", duration}}},
+      {"materials",
+       {{"rock", {{"density", density}, {"youngs_modulus", 1e10}, {"poisson_ratio", 0.25}}}}},
+      {"contact", {{"law", "penalty"}, {"kn", 1e9}, {"kt", 1e9}, {"friction_angle_deg", 30}}},
+      {"output", {{"every", every}}}};
   scene["blocks"] = std::move(blocks);
   return scene;
 }
@@ -101,7 +110,8 @@ std::vector<std::pair<double, std::string>> pvd_entries(const fs::path& file) {
   const pt::ptree pvd = read_xml(file);
   for (const auto& [name, node] : pvd.get_child("VTKFile.Collection")) {
     if (name != "DataSet") continue;
-    entries.emplace_back(node.get<double>("<xmlattr>.timestep"), node.get<std::string>("<xmlattr>.file"));
+    entries.emplace_back(node.get<double>("<xmlattr>.timestep"),
+                         node.get<std::string>("<xmlattr>.file"));
   }
   return entries;
 }
@@ -114,8 +124,8 @@ std::vector<std::pair<double, std::string>> pvd_entries(const fs::path& file) {
 // ten times what 100 steps of 10 m can accumulate). x, y and the rotation do not move at all.
 BOOST_AUTO_TEST_CASE(free_fall_tracks_follow_the_parabola) {
   const fs::path dir = fresh_dir("free_fall");
-  const dyn::Scene3d scene =
-      dyn::parse_scene3d(scene_with({block("cube", {0, 0, 10}, {1, 1, 11}, false)}, 0.1, 10), "fall.json");
+  const dyn::Scene3d scene = dyn::parse_scene3d(
+      scene_with({block("cube", {0, 0, 10}, {1, 1, 11}, false)}, 0.1, 10), "fall.json");
   dyn::Run3dOptions options;
   options.out_dir = dir;
   const dyn::Run3dReport report = dyn::run_scene3d(scene, options);
@@ -148,7 +158,8 @@ BOOST_AUTO_TEST_CASE(free_fall_tracks_follow_the_parabola) {
   BOOST_TEST(summary["max_penetration"] == 0.0);
   BOOST_TEST(summary["tracked"] == json::array({"cube"}));
   // No contact at all: contacts.csv is its header alone.
-  BOOST_TEST(read_csv(dir / "contacts.csv", "t,block_a,block_b,x,y,z,nx,ny,nz,fn,ft,state").empty());
+  BOOST_TEST(
+      read_csv(dir / "contacts.csv", "t,block_a,block_b,x,y,z,nx,ny,nz,fn,ft,state").empty());
 }
 
 // A unit cube resting on a fixed slab: four vertex-face constraints, one per bottom corner, at
@@ -157,10 +168,11 @@ BOOST_AUTO_TEST_CASE(free_fall_tracks_follow_the_parabola) {
 // the weight: the forces sum to m g within 1 %.
 BOOST_AUTO_TEST_CASE(a_resting_cube_has_four_contacts_carrying_its_weight) {
   const fs::path dir = fresh_dir("resting");
-  const dyn::Scene3d scene = dyn::parse_scene3d(
-      scene_with({block("slab", {-2, -2, -1}, {6, 2, 0}, true), block("cube", {-0.5, -0.5, 0}, {0.5, 0.5, 1}, false)},
-                 0.2, 50),
-      "resting.json");
+  const dyn::Scene3d scene =
+      dyn::parse_scene3d(scene_with({block("slab", {-2, -2, -1}, {6, 2, 0}, true),
+                                     block("cube", {-0.5, -0.5, 0}, {0.5, 0.5, 1}, false)},
+                                    0.2, 50),
+                         "resting.json");
   dyn::Run3dOptions options;
   options.out_dir = dir;
   const dyn::Run3dReport report = dyn::run_scene3d(scene, options);
@@ -202,10 +214,11 @@ BOOST_AUTO_TEST_CASE(a_resting_cube_has_four_contacts_carrying_its_weight) {
 // viewer, three of each box.
 BOOST_AUTO_TEST_CASE(the_pvd_lists_every_frame) {
   const fs::path dir = fresh_dir("frames");
-  const dyn::Scene3d scene = dyn::parse_scene3d(
-      scene_with({block("slab", {-2, -2, -1}, {6, 2, 0}, true), block("cube", {-0.5, -0.5, 0}, {0.5, 0.5, 1}, false)},
-                 0.012, 5),
-      "frames.json");
+  const dyn::Scene3d scene =
+      dyn::parse_scene3d(scene_with({block("slab", {-2, -2, -1}, {6, 2, 0}, true),
+                                     block("cube", {-0.5, -0.5, 0}, {0.5, 0.5, 1}, false)},
+                                    0.012, 5),
+                         "frames.json");
   dyn::Run3dOptions options;
   options.out_dir = dir;
   const dyn::Run3dReport report = dyn::run_scene3d(scene, options);
@@ -215,7 +228,8 @@ BOOST_AUTO_TEST_CASE(the_pvd_lists_every_frame) {
   BOOST_TEST(report.frames == entries.size());
   BOOST_TEST_REQUIRE(tracks.size() == entries.size());
   std::size_t vtp_files = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) vtp_files += entry.path().extension() == ".vtp";
+  for (const auto& entry : fs::directory_iterator(dir))
+    vtp_files += entry.path().extension() == ".vtp";
   BOOST_TEST(vtp_files == entries.size());
   for (std::size_t i = 0; i < entries.size(); ++i) {
     BOOST_TEST(entries[i].second == "frame_000" + std::to_string(i) + ".vtp");

@@ -1,8 +1,8 @@
 #define BOOST_TEST_MODULE scene3d
 #include "rockcontact/dynamics/io/scene3d.hpp"
 
-#include <boost/test/unit_test.hpp>
 #include <array>
+#include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -26,9 +26,16 @@ const std::string examples3d = ROCKCONTACT_EXAMPLES_DIR "/scenes3d";
 // The box [lo, hi] as {"vertices", "faces"}, faces counter-clockwise seen from outside.
 json box(std::array<double, 3> lo, std::array<double, 3> hi) {
   return {{"vertices",
-           {{lo[0], lo[1], lo[2]}, {hi[0], lo[1], lo[2]}, {hi[0], hi[1], lo[2]}, {lo[0], hi[1], lo[2]},
-            {lo[0], lo[1], hi[2]}, {hi[0], lo[1], hi[2]}, {hi[0], hi[1], hi[2]}, {lo[0], hi[1], hi[2]}}},
-          {"faces", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
+           {{lo[0], lo[1], lo[2]},
+            {hi[0], lo[1], lo[2]},
+            {hi[0], hi[1], lo[2]},
+            {lo[0], hi[1], lo[2]},
+            {lo[0], lo[1], hi[2]},
+            {hi[0], lo[1], hi[2]},
+            {hi[0], hi[1], hi[2]},
+            {lo[0], hi[1], hi[2]}}},
+          {"faces",
+           {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
 }
 
 // A block {"id", "group", "material": "rock", "vertices", "faces"} of the box [lo, hi].
@@ -58,7 +65,10 @@ json contract_scene() {
   cube["material"] = "soft";
   cube["rigid"] = true;
   cube["velocity"] = {1, 2, 3, 0.1, 0.2, 0.3};
-  json wall = {{"id", "wall"}, {"group", "ground"}, {"material", "rock"}, {"fixed", true},
+  json wall = {{"id", "wall"},
+               {"group", "ground"},
+               {"material", "rock"},
+               {"fixed", true},
                {"parts", {box({2, -2, 0}, {3, 2, 1}), box({2, 2, 0}, {3, 3, 1})}}};
   scene["blocks"] = {slab, cube, wall};
   return scene;
@@ -80,7 +90,8 @@ void expect_error(const std::function<void(json&)>& change, const std::string& p
       BOOST_TEST(e.source() == "case.json");
       BOOST_TEST(e.path() == path);
       BOOST_TEST(message.find("case.json: " + path + ": ") == 0);
-      BOOST_TEST(message.find(expected) != std::string::npos, "message lacks \"" << expected << '"');
+      BOOST_TEST(message.find(expected) != std::string::npos,
+                 "message lacks \"" << expected << '"');
     }
   }
 }
@@ -164,44 +175,63 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
 
 // Each malformed field is named by its JSON path, with what was expected.
 BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
-  expect_error([](json& d) { d["colour"] = "red"; }, "colour", "unknown field; expected only format");
+  expect_error([](json& d) { d["colour"] = "red"; }, "colour",
+               "unknown field; expected only format");
   expect_error([](json& d) { d["blocks"][1]["mass"] = 1; }, "blocks[1].mass", "unknown field");
   expect_error([](json& d) { d["dimension"] = 2; }, "dimension", "expected 3, got number 2");
-  expect_error([](json& d) { d["time"]["dt"] = not_a_number; }, "time.dt", "expected the largest time step");
-  expect_error([](json& d) { d["gravity"][2] = not_a_number; }, "gravity[2]", "expected a finite number");
+  expect_error([](json& d) { d["time"]["dt"] = not_a_number; }, "time.dt",
+               "expected the largest time step");
+  expect_error([](json& d) { d["gravity"][2] = not_a_number; }, "gravity[2]",
+               "expected a finite number");
   for (const double ratio : {0.0, 1.0, -0.5, 1.5}) {
-    expect_error([&](json& d) { d["time"]["max_displacement_ratio"] = ratio; }, "time.max_displacement_ratio",
-                 "expected the largest vertex displacement of a step over the scene's size, a number in (0, 1)");
+    expect_error([&](json& d) { d["time"]["max_displacement_ratio"] = ratio; },
+                 "time.max_displacement_ratio",
+                 "expected the largest vertex displacement of a step over the scene's size, a "
+                 "number in (0, 1)");
   }
-  expect_error([](json& d) { d["time"]["max_displacement_ratio"] = not_a_number; }, "time.max_displacement_ratio",
-               "a number in (0, 1), got non-finite number");
+  expect_error([](json& d) { d["time"]["max_displacement_ratio"] = not_a_number; },
+               "time.max_displacement_ratio", "a number in (0, 1), got non-finite number");
   expect_error([](json& d) { d["blocks"][1]["material"] = "granite"; }, "blocks[1].material",
                "unknown material \"granite\"; expected one of the scene's materials (rock, soft)");
   expect_error([](json& d) { d["blocks"][2]["id"] = "slab"; }, "blocks[2].id",
                "duplicate id \"slab\" (also blocks[0].id)");
-  expect_error([](json& d) { d["interfaces"][0]["between"][1] = "rocks"; }, "interfaces[0].between[1]",
-               "no block is in the group \"rocks\"");
-  expect_error([](json& d) { d["interfaces"].push_back({{"between", {"rock", "ground"}}}); },
-               "interfaces[1].between", "already have an interface (interfaces[0])");
+  expect_error([](json& d) { d["interfaces"][0]["between"][1] = "rocks"; },
+               "interfaces[0].between[1]", "no block is in the group \"rocks\"");
+  expect_error(
+      [](json& d) {
+        d["interfaces"].push_back({{"between", {"rock", "ground"}}});
+      },
+      "interfaces[1].between", "already have an interface (interfaces[0])");
   expect_error([](json& d) { d["interfaces"][0]["friction_angle_deg"] = 90; },
                "interfaces[0].friction_angle_deg", "a number in [0, 90)");
-  expect_error([](json& d) { d["contact"]["law"] = "potential"; }, "contact.law", "expected \"penalty\"");
+  expect_error([](json& d) { d["contact"]["law"] = "potential"; }, "contact.law",
+               "expected \"penalty\"");
   expect_error([](json& d) { d["contact"].erase("kt"); }, "contact.kt", "missing field");
   expect_error([](json& d) { d["contact"]["tensile_strength"] = -1; }, "contact.tensile_strength",
                "a finite number >= 0");
-  expect_error([](json& d) { d["blocks"][0]["velocity"] = {0, 0, 0, 0, 0, 0}; }, "blocks[0].velocity",
-               "a fixed block does not move");
-  expect_error([](json& d) { d["blocks"][1]["velocity"] = {0, 0, 0, 0, 0}; }, "blocks[1].velocity",
-               "expected the centroid velocity [vx, vy, vz, wx, wy, wz]");
-  expect_error([](json& d) { d["blocks"][1]["parts"] = json::array({box({0, 0, 0}, {1, 1, 1})}); }, "blocks[1]",
-               "expected exactly one of \"vertices\" with \"faces\"");
+  expect_error([](json& d) { d["blocks"][0]["velocity"] = {0, 0, 0, 0, 0, 0}; },
+               "blocks[0].velocity", "a fixed block does not move");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["velocity"] = {0, 0, 0, 0, 0};
+      },
+      "blocks[1].velocity", "expected the centroid velocity [vx, vy, vz, wx, wy, wz]");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["parts"] = json::array({box({0, 0, 0}, {1, 1, 1})});
+      },
+      "blocks[1]", "expected exactly one of \"vertices\" with \"faces\"");
   expect_error([](json& d) { d["blocks"][1].erase("faces"); }, "blocks[1].faces", "missing field");
   expect_error([](json& d) { d["blocks"][1]["faces"][2][1] = -1; }, "blocks[1].faces[2][1]",
                "expected a vertex index, an integer >= 0");
-  expect_error([](json& d) { d["output"]["track"] = {"slab", "ghost"}; }, "output.track[1]",
-               "no block has the id \"ghost\"");
+  expect_error(
+      [](json& d) {
+        d["output"]["track"] = {"slab", "ghost"};
+      },
+      "output.track[1]", "no block has the id \"ghost\"");
   expect_error([](json& d) { d["output"]["every"] = 0; }, "output.every", "an integer >= 1");
-  expect_error([](json& d) { d["joint_sets"] = json::array(); }, "joint_sets", "expected a \"region\" beside them");
+  expect_error([](json& d) { d["joint_sets"] = json::array(); }, "joint_sets",
+               "expected a \"region\" beside them");
   expect_error([](json& d) { d.erase("blocks"); }, "blocks", "the scene has no blocks");
 }
 
@@ -209,12 +239,18 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
 BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
   // The top face left out: the top edge 4 -> 7 of the side face now at index 4 has no reverse.
   expect_error([](json& d) { d["blocks"][1]["faces"].erase(1); }, "blocks[1].faces[4]",
-               "polyhedron 'cube', face 4, vertex 4: edge 4 -> 7 has no neighbouring face traversing it back");
+               "polyhedron 'cube', face 4, vertex 4: edge 4 -> 7 has no neighbouring face "
+               "traversing it back");
   // The top face clockwise seen from outside: its edge 5 -> 4 runs as face 2's does.
-  expect_error([](json& d) { d["blocks"][1]["faces"][1] = {7, 6, 5, 4}; }, "blocks[1].faces[2]",
-               "polyhedron 'cube', face 2, vertex 5: edge 5 -> 4 is traversed in the same direction by face 1");
-  expect_error([](json& d) { d["blocks"][1]["vertices"][6][2] = not_a_number; }, "blocks[1].vertices[6]",
-               "polyhedron 'cube', vertex 6");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["faces"][1] = {7, 6, 5, 4};
+      },
+      "blocks[1].faces[2]",
+      "polyhedron 'cube', face 2, vertex 5: edge 5 -> 4 is traversed in the same direction by face "
+      "1");
+  expect_error([](json& d) { d["blocks"][1]["vertices"][6][2] = not_a_number; },
+               "blocks[1].vertices[6]", "polyhedron 'cube', vertex 6");
   expect_error([](json& d) { d["blocks"][2]["parts"][1]["vertices"][0][0] = not_a_number; },
                "blocks[2].parts[1].vertices[0]", "polyhedron 'wall.2', vertex 0");
   // Zero volume: a "tetrahedron" whose four vertices lie in the plane z = 0.
@@ -227,7 +263,8 @@ BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
 }
 
 BOOST_AUTO_TEST_CASE(malformed_json_names_the_file) {
-  const std::filesystem::path file = std::filesystem::current_path() / "scene3d_test_malformed.json";
+  const std::filesystem::path file =
+      std::filesystem::current_path() / "scene3d_test_malformed.json";
   std::ofstream(file) << "{\"dimension\": 3,\n \"time\": {\"dt\": 1e-3,}\n}\n";
   try {
     dyn::read_scene3d_file(file);
@@ -249,7 +286,8 @@ BOOST_AUTO_TEST_CASE(the_readers_dispatch_on_the_dimension) {
     BOOST_ERROR("the 2D reader accepted a 3D scene");
   } catch (const dyn::InputError& e) {
     BOOST_TEST(e.path() == "dimension");
-    BOOST_TEST(std::string(e.what()).find("a 3D scene, read by parse_scene3d") != std::string::npos);
+    BOOST_TEST(std::string(e.what()).find("a 3D scene, read by parse_scene3d") !=
+               std::string::npos);
   }
   BOOST_TEST(dyn::read_scene3d_file(scene_dir + "/three_d.json").blocks.size() == 2u);
 }
@@ -280,7 +318,8 @@ BOOST_AUTO_TEST_CASE(a_region_is_cut_into_blocks) {
                         {"material", "soft"},
                         {"group", "rock"},
                         {"id_prefix", "r"}};
-  document["joint_sets"] = {{{"dip_deg", 0}, {"dip_direction_deg", 0}, {"spacing", 1}, {"offset", 0.5}}};
+  document["joint_sets"] = {
+      {{"dip_deg", 0}, {"dip_direction_deg", 0}, {"spacing", 1}, {"offset", 0.5}}};
   document["blocks"].erase(1);
   document.erase("output");
   const dyn::Scene3d scene = dyn::parse_scene3d(document, "region.json");

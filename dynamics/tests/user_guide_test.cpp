@@ -2,8 +2,9 @@
 // The JSON examples of docs/user-guide.md and of the README load as they are printed.
 //
 // Every fenced ```json block is parsed with nlohmann::json. A block with "dimension" is a scene
-// and goes through parse_scene (parse_scene3d for "dimension": 3); a block with "pairs" is a `rockcontact pairs` input and goes
-// through parse_pairs; any other block (an excerpt of an output file) must at least be JSON.
+// and goes through parse_scene (parse_scene3d for "dimension": 3); a block with "pairs" is a
+// `rockcontact pairs` input and goes through parse_pairs; any other block (an excerpt of an
+// output file) must at least be JSON.
 // A block preceded by the line <!-- invalid --> is an example of a mistake: it must throw
 // InputError (malformed JSON counts too). The guide's first scene and its first 3D scene are
 // also run to their end, and what the guide says they write must be there.
@@ -208,7 +209,8 @@ BOOST_AUTO_TEST_CASE(the_first_3d_scene_runs_and_writes_what_the_guide_lists) {
   json document;
   for (const Block& b : json_blocks(guide)) {
     const json doc = json::parse(b.text, nullptr, false);
-    if (!b.invalid && !doc.is_discarded() && kind_of(doc) == Kind::scene && dyn::is_scene3d_document(doc)) {
+    if (!b.invalid && !doc.is_discarded() && kind_of(doc) == Kind::scene &&
+        dyn::is_scene3d_document(doc)) {
       document = doc;
       break;
     }
@@ -222,7 +224,8 @@ BOOST_AUTO_TEST_CASE(the_first_3d_scene_runs_and_writes_what_the_guide_lists) {
   const dyn::Run3dReport report = dyn::run_scene3d(scene, options);
   BOOST_TEST(report.status == "completed", report.error);
   BOOST_TEST(report.time >= scene.duration * (1.0 - 1e-12));
-  for (const char* file : {"tracks.csv", "contacts.csv", "frames.pvd", "final.svg", "summary.json"}) {
+  for (const char* file :
+       {"tracks.csv", "contacts.csv", "frames.pvd", "final.svg", "summary.json"}) {
     BOOST_TEST(fs::exists(dir / file), file);
   }
   BOOST_TEST(report.frames >= 2u);

@@ -63,15 +63,16 @@ void open_piece(std::ostream& out, std::size_t points, std::size_t verts, std::s
       << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << polys << "\">\n";
 }
 
-void write_pvd(const std::filesystem::path& file, std::span<const std::pair<double, std::string>> frames) {
+void write_pvd(const std::filesystem::path& file,
+               std::span<const std::pair<double, std::string>> frames) {
   AtomicFile pvd(file);
   std::ostream& out = pvd.stream();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
   for (const auto& [time, name] : frames) {
-    out << "    <DataSet timestep=\"" << number(time) << "\" group=\"\" part=\"0\" file=\""
-        << name << "\"/>\n";
+    out << "    <DataSet timestep=\"" << number(time) << "\" group=\"\" part=\"0\" file=\"" << name
+        << "\"/>\n";
   }
   out << "  </Collection>\n</VTKFile>\n";
   pvd.commit();

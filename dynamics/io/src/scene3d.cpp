@@ -72,7 +72,8 @@ constexpr JsonField block_fields[] = {
     {"faces", false,
      "the block's faces, arrays of vertex indices counter-clockwise seen from outside (with "
      "\"vertices\")"},
-    {"parts", false, "the convex parts of a non-convex block, an array of {\"vertices\", \"faces\"}"},
+    {"parts", false,
+     "the convex parts of a non-convex block, an array of {\"vertices\", \"faces\"}"},
     {"group", false, "a group name (a string) that interfaces refer to"},
     {"fixed", false, "true or false"},
     {"rigid", false, "true or false"},
@@ -90,7 +91,8 @@ std::string_view expected(std::span<const JsonField> fields, std::string_view na
 
 // Where an InvalidPolyhedron belongs: the face it names, else the vertex, else the solid.
 std::string polyhedron_error_path(const std::string& path, const kernel::InvalidPolyhedron& e) {
-  if (e.face() >= 0) return json_element(json_child(path, "faces"), static_cast<std::size_t>(e.face()));
+  if (e.face() >= 0)
+    return json_element(json_child(path, "faces"), static_cast<std::size_t>(e.face()));
   if (e.vertex() >= 0) {
     return json_element(json_child(path, "vertices"), static_cast<std::size_t>(e.vertex()));
   }
@@ -103,7 +105,8 @@ bool flat(std::span<const kernel::Point3> v) {
   for (std::size_t j = 1; j < v.size(); ++j) {
     for (std::size_t k = j + 1; k < v.size(); ++k) {
       for (std::size_t l = k + 1; l < v.size(); ++l) {
-        if (kernel::orient3d<kernel::Filtered>(v[0], v[j], v[k], v[l]) != kernel::Sign::zero) return false;
+        if (kernel::orient3d<kernel::Filtered>(v[0], v[j], v[k], v[l]) != kernel::Sign::zero)
+          return false;
       }
     }
   }
@@ -117,7 +120,8 @@ class Scene3dParser {
 
   void header(const json& document, Scene3d& scene) const {
     if (!document.is_object()) {
-      reader_.fail_expected("", "a JSON object {\"dimension\": 3, \"time\", \"blocks\", ...}", document);
+      reader_.fail_expected("", "a JSON object {\"dimension\": 3, \"time\", \"blocks\", ...}",
+                            document);
     }
     if (document.contains("format")) {
       const json& value = document.at("format");
@@ -157,18 +161,21 @@ class Scene3dParser {
 
   void gravity(const json& document, Scene3d& scene) const {
     if (!document.contains("gravity")) return;
-    const auto g = reader_.numbers(document.at("gravity"), "gravity", 3, expected(scene_fields, "gravity"));
+    const auto g =
+        reader_.numbers(document.at("gravity"), "gravity", 3, expected(scene_fields, "gravity"));
     scene.params.gravity = {g[0], g[1], g[2]};
   }
 
   void materials(const json& value) {
-    if (!value.is_object()) reader_.fail_expected("materials", expected(scene_fields, "materials"), value);
+    if (!value.is_object())
+      reader_.fail_expected("materials", expected(scene_fields, "materials"), value);
     for (const auto& [name, item] : value.items()) materials_.emplace(name, material(item, name));
   }
 
   void contact(const json& value, Scene3d& scene) const {
     reader_.check_object(value, "contact", expected(scene_fields, "contact"), contact_fields);
-    if (reader_.string(value.at("law"), "contact.law", expected(contact_fields, "law")) != "penalty") {
+    if (reader_.string(value.at("law"), "contact.law", expected(contact_fields, "law")) !=
+        "penalty") {
       reader_.fail_expected("contact.law", expected(contact_fields, "law"), value.at("law"));
     }
     ContactLaw3d& law = scene.law;
@@ -178,8 +185,8 @@ class Scene3dParser {
     law.cohesion = strength(value, "contact", "cohesion", contact_fields, 0.0);
     law.tensile_strength = strength(value, "contact", "tensile_strength", contact_fields, 0.0);
     if (value.contains("policy")) {
-      law.policy = reader_.choice(value.at("policy"), "contact.policy", expected(contact_fields, "policy"),
-                                  &kernel::parse_policy);
+      law.policy = reader_.choice(value.at("policy"), "contact.policy",
+                                  expected(contact_fields, "policy"), &kernel::parse_policy);
     }
   }
 
@@ -209,8 +216,9 @@ class Scene3dParser {
     if (document.contains("joint_sets")) cut["joint_sets"] = document.at("joint_sets");
     const Cut3Input input = parse_cut3(cut, reader_.source());
     if (input.material.empty()) {
-      reader_.fail("region.material", "missing field; expected the name of one of the scene's materials "
-                                      "(the material of every block cut from the region)");
+      reader_.fail("region.material",
+                   "missing field; expected the name of one of the scene's materials "
+                   "(the material of every block cut from the region)");
     }
     const Material material = material_of(document.at("region").at("material"), "region.material");
     std::vector<kernel::CutBlock3> pieces = cut3d(input);
@@ -221,8 +229,9 @@ class Scene3dParser {
       const bool taken = std::any_of(scene.blocks.begin(), scene.blocks.end(),
                                      [&](const Block3dSpec& b) { return b.id == spec.id; });
       if (taken) {
-        reader_.fail("region.id_prefix", "the generated id \"" + spec.id +
-                                             "\" is also a block's; expected a prefix no other block id uses");
+        reader_.fail("region.id_prefix",
+                     "the generated id \"" + spec.id +
+                         "\" is also a block's; expected a prefix no other block id uses");
       }
       spec.parts = std::move(pieces[k].parts);
       spec.group = input.group;
@@ -236,7 +245,8 @@ class Scene3dParser {
   void interfaces(const json& document, Scene3d& scene) const {
     if (!document.contains("interfaces")) return;
     const json& value = document.at("interfaces");
-    if (!value.is_array()) reader_.fail_expected("interfaces", expected(scene_fields, "interfaces"), value);
+    if (!value.is_array())
+      reader_.fail_expected("interfaces", expected(scene_fields, "interfaces"), value);
     for (std::size_t i = 0; i < value.size(); ++i) {
       const std::string path = json_element("interfaces", i);
       Interface3d face = interface(value[i], path, scene);
@@ -259,8 +269,10 @@ class Scene3dParser {
     const json& value = document.contains("output") ? document.at("output") : no_output;
     reader_.check_object(value, "output", expected(scene_fields, "output"), output_fields);
     if (value.contains("every")) {
-      const std::int64_t every = reader_.integer(value.at("every"), "output.every", expected(output_fields, "every"));
-      if (every < 1) reader_.fail_expected("output.every", expected(output_fields, "every"), value.at("every"));
+      const std::int64_t every =
+          reader_.integer(value.at("every"), "output.every", expected(output_fields, "every"));
+      if (every < 1)
+        reader_.fail_expected("output.every", expected(output_fields, "every"), value.at("every"));
       scene.every = static_cast<std::size_t>(every);
     }
     if (!value.contains("track")) {
@@ -270,13 +282,15 @@ class Scene3dParser {
       return;
     }
     const json& track = value.at("track");
-    if (!track.is_array()) reader_.fail_expected("output.track", expected(output_fields, "track"), track);
+    if (!track.is_array())
+      reader_.fail_expected("output.track", expected(output_fields, "track"), track);
     for (std::size_t i = 0; i < track.size(); ++i) {
       const std::string item_path = json_element("output.track", i);
       const std::string& id = reader_.string(track[i], item_path, "a block id");
       const bool known = std::any_of(scene.blocks.begin(), scene.blocks.end(),
                                      [&](const Block3dSpec& b) { return b.id == id; });
-      if (!known) reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
+      if (!known)
+        reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
       if (std::find(scene.track.begin(), scene.track.end(), id) != scene.track.end()) {
         reader_.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
       }
@@ -287,12 +301,15 @@ class Scene3dParser {
  private:
   Material material(const json& value, const std::string& name) const {
     const std::string path = json_child("materials", name);
-    reader_.check_object(value, path, "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
+    reader_.check_object(value, path,
+                         "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
                          material_fields);
     Material m;
-    m.density = reader_.positive(value.at("density"), json_child(path, "density"), expected(material_fields, "density"));
-    m.youngs_modulus = reader_.positive(value.at("youngs_modulus"), json_child(path, "youngs_modulus"),
-                                        expected(material_fields, "youngs_modulus"));
+    m.density = reader_.positive(value.at("density"), json_child(path, "density"),
+                                 expected(material_fields, "density"));
+    m.youngs_modulus =
+        reader_.positive(value.at("youngs_modulus"), json_child(path, "youngs_modulus"),
+                         expected(material_fields, "youngs_modulus"));
     const std::string nu_path = json_child(path, "poisson_ratio");
     const std::string_view nu_expected = expected(material_fields, "poisson_ratio");
     m.poisson_ratio = reader_.number(value.at("poisson_ratio"), nu_path, nu_expected);
@@ -308,15 +325,16 @@ class Scene3dParser {
     if (it == materials_.end()) {
       std::string names;
       for (const auto& [known, m] : materials_) names += (names.empty() ? "" : ", ") + known;
-      reader_.fail(path, "unknown material \"" + name + "\"; expected one of the scene's materials (" +
+      reader_.fail(path, "unknown material \"" + name +
+                             "\"; expected one of the scene's materials (" +
                              (names.empty() ? "none defined" : names) + ")");
     }
     return it->second;
   }
 
   // friction_angle_deg of `value` at `path`, in [0, 90), or `fallback` when absent.
-  double friction_angle(const json& value, const std::string& path, std::span<const JsonField> fields,
-                        double fallback) const {
+  double friction_angle(const json& value, const std::string& path,
+                        std::span<const JsonField> fields, double fallback) const {
     if (!value.contains("friction_angle_deg")) return fallback;
     const std::string field_path = json_child(path, "friction_angle_deg");
     const std::string_view what = expected(fields, "friction_angle_deg");
@@ -333,12 +351,14 @@ class Scene3dParser {
   }
 
   Interface3d interface(const json& value, const std::string& path, const Scene3d& scene) const {
-    reader_.check_object(value, path,
-                         "an interface {\"between\", \"friction_angle_deg\", \"cohesion\", \"tensile_strength\"}",
-                         interface_fields);
+    reader_.check_object(
+        value, path,
+        "an interface {\"between\", \"friction_angle_deg\", \"cohesion\", \"tensile_strength\"}",
+        interface_fields);
     const json& groups = value.at("between");
     const std::string between_path = json_child(path, "between");
-    if (!groups.is_array() || groups.size() != 2 || !groups[0].is_string() || !groups[1].is_string()) {
+    if (!groups.is_array() || groups.size() != 2 || !groups[0].is_string() ||
+        !groups[1].is_string()) {
       reader_.fail_expected(between_path, expected(interface_fields, "between"), groups);
     }
     Interface3d face;
@@ -349,36 +369,45 @@ class Scene3dParser {
       const bool used = std::any_of(scene.blocks.begin(), scene.blocks.end(),
                                     [&](const Block3dSpec& b) { return b.group == group; });
       if (!used) {
-        reader_.fail(json_element(between_path, g),
-                     "no block is in the group \"" + group + "\"; expected the group of one of the blocks");
+        reader_.fail(
+            json_element(between_path, g),
+            "no block is in the group \"" + group + "\"; expected the group of one of the blocks");
       }
     }
-    face.friction_angle_deg = friction_angle(value, path, interface_fields, scene.law.friction_angle_deg);
+    face.friction_angle_deg =
+        friction_angle(value, path, interface_fields, scene.law.friction_angle_deg);
     face.cohesion = strength(value, path, "cohesion", interface_fields, scene.law.cohesion);
-    face.tensile_strength = strength(value, path, "tensile_strength", interface_fields, scene.law.tensile_strength);
+    face.tensile_strength =
+        strength(value, path, "tensile_strength", interface_fields, scene.law.tensile_strength);
     return face;
   }
 
   Block3dSpec block(const json& value, const std::string& path) const {
-    reader_.check_object(value, path, "a block, an object {\"id\", \"material\", \"vertices\", \"faces\", ...}",
+    reader_.check_object(value, path,
+                         "a block, an object {\"id\", \"material\", \"vertices\", \"faces\", ...}",
                          block_fields);
     Block3dSpec spec;
     const std::string id_path = json_child(path, "id");
     spec.id = reader_.string(value.at("id"), id_path, expected(block_fields, "id"));
-    if (spec.id.empty()) reader_.fail_expected(id_path, expected(block_fields, "id"), value.at("id"));
+    if (spec.id.empty())
+      reader_.fail_expected(id_path, expected(block_fields, "id"), value.at("id"));
     spec.material = material_of(value.at("material"), json_child(path, "material"));
     if (value.contains("group")) {
-      spec.group = reader_.string(value.at("group"), json_child(path, "group"), expected(block_fields, "group"));
+      spec.group = reader_.string(value.at("group"), json_child(path, "group"),
+                                  expected(block_fields, "group"));
     }
     for (auto [key, target] : {std::pair{"fixed", &spec.fixed}, std::pair{"rigid", &spec.rigid}}) {
-      if (value.contains(key)) *target = reader_.boolean(value.at(key), json_child(path, key), expected(block_fields, key));
+      if (value.contains(key))
+        *target =
+            reader_.boolean(value.at(key), json_child(path, key), expected(block_fields, key));
     }
     if (value.contains("velocity")) {
       const std::string velocity_path = json_child(path, "velocity");
       if (spec.fixed) {
         reader_.fail(velocity_path, "a fixed block does not move; expected no velocity on it");
       }
-      const auto v = reader_.numbers(value.at("velocity"), velocity_path, 6, expected(block_fields, "velocity"));
+      const auto v = reader_.numbers(value.at("velocity"), velocity_path, 6,
+                                     expected(block_fields, "velocity"));
       std::copy(v.begin(), v.end(), spec.velocity.begin());
     }
     spec.parts = parts(value, path, spec.id);
@@ -390,13 +419,16 @@ class Scene3dParser {
                                               const std::string& id) const {
     const bool solid = value.contains("vertices") || value.contains("faces");
     if (solid == value.contains("parts")) {
-      reader_.fail(path, "expected exactly one of \"vertices\" with \"faces\" (a convex block) or \"parts\"");
+      reader_.fail(
+          path,
+          "expected exactly one of \"vertices\" with \"faces\" (a convex block) or \"parts\"");
     }
     if (solid) {
       json polyhedron = json::object();
       for (const char* key : {"vertices", "faces"}) {
         if (!value.contains(key)) {
-          reader_.fail(json_child(path, key), "missing field; expected " + std::string(expected(block_fields, key)));
+          reader_.fail(json_child(path, key),
+                       "missing field; expected " + std::string(expected(block_fields, key)));
         }
         polyhedron[key] = value.at(key);
       }
@@ -404,7 +436,8 @@ class Scene3dParser {
     }
     const json& list = value.at("parts");
     const std::string parts_path = json_child(path, "parts");
-    if (!list.is_array() || list.empty()) reader_.fail_expected(parts_path, expected(block_fields, "parts"), list);
+    if (!list.is_array() || list.empty())
+      reader_.fail_expected(parts_path, expected(block_fields, "parts"), list);
     std::vector<kernel::ConvexPolyhedron> out;
     for (std::size_t j = 0; j < list.size(); ++j) {
       out.push_back(make(list[j], json_element(parts_path, j), id + "." + std::to_string(j + 1)));
@@ -412,15 +445,18 @@ class Scene3dParser {
     return out;
   }
 
-  kernel::ConvexPolyhedron make(const json& value, const std::string& path, const std::string& name) const {
-    PolyhedronSpec spec = reader_.polyhedron(value, path, "a convex polyhedron {\"vertices\", \"faces\"}");
+  kernel::ConvexPolyhedron make(const json& value, const std::string& path,
+                                const std::string& name) const {
+    PolyhedronSpec spec =
+        reader_.polyhedron(value, path, "a convex polyhedron {\"vertices\", \"faces\"}");
     try {
       return kernel::ConvexPolyhedron::make(name, spec.vertices, std::move(spec.faces));
     } catch (const kernel::InvalidPolyhedron& e) {
       if (e.reason() == kernel::InvalidPolyhedron::Reason::not_convex && flat(spec.vertices)) {
-        reader_.fail(json_child(path, "vertices"), "polyhedron '" + name +
-                                                       "': every vertex lies in one plane, zero volume; "
-                                                       "expected a solid");
+        reader_.fail(json_child(path, "vertices"),
+                     "polyhedron '" + name +
+                         "': every vertex lies in one plane, zero volume; "
+                         "expected a solid");
       }
       reader_.fail(polyhedron_error_path(path, e), e.what());
     }
@@ -448,7 +484,8 @@ Scene3d parse_scene3d(const json& document, const std::string& source_name) {
   parser.blocks(document, scene);
   parser.region(document, scene);
   if (scene.blocks.empty()) {
-    JsonReader(source_name).fail("blocks", "the scene has no blocks; expected \"blocks\" or a \"region\"");
+    JsonReader(source_name)
+        .fail("blocks", "the scene has no blocks; expected \"blocks\" or a \"region\"");
   }
   parser.interfaces(document, scene);
   parser.output(document, scene);

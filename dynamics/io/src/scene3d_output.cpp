@@ -43,7 +43,9 @@ std::string_view mode_name(ContactMode3d mode) {
 }
 
 // Component k of a block's velocity (vx, vy, vz, wx, wy, wz, ...): a fixed block has none, 0.
-double velocity(const Block3dState& b, std::size_t k) { return k < b.velocity.size() ? b.velocity[k] : 0.0; }
+double velocity(const Block3dState& b, std::size_t k) {
+  return k < b.velocity.size() ? b.velocity[k] : 0.0;
+}
 
 // One cell's values in a cell-data list of a .vtp file.
 void write_numbers(std::ostream& out, std::span<const double> values) {
@@ -56,16 +58,19 @@ void write_numbers(std::ostream& out, std::span<const double> values) {
 void write_frame(const fs::path& file, std::span<const Block3dState> blocks) {
   std::size_t points = 0, polys = 0;
   for (const Block3dState& b : blocks) {
-    for (const kernel::ConvexPolyhedron& p : b.parts) points += p.size(), polys += p.input_faces().size();
+    for (const kernel::ConvexPolyhedron& p : b.parts)
+      points += p.size(), polys += p.input_faces().size();
   }
   AtomicFile output(file);
   std::ostream& out = output.stream();
   output_text::open_piece(out, points, 0, polys);
   out << "      <Points>\n"
-      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+         "format=\"ascii\">\n";
   for (const Block3dState& b : blocks) {
     for (const kernel::ConvexPolyhedron& p : b.parts) {
-      for (const Point3& v : p.vertices()) out << "          " << number(v.x) << ' ' << number(v.y) << ' ' << number(v.z) << '\n';
+      for (const Point3& v : p.vertices())
+        out << "          " << number(v.x) << ' ' << number(v.y) << ' ' << number(v.z) << '\n';
     }
   }
   out << "        </DataArray>\n      </Points>\n      <Polys>\n"
@@ -89,13 +94,15 @@ void write_frame(const fs::path& file, std::span<const Block3dState> blocks) {
   out << "\n        </DataArray>\n      </Polys>\n"
       << "      <CellData Scalars=\"block\" Vectors=\"velocity\">\n";
   // Each face's values: its block's (and part's) repeated over the faces.
-  const auto per_face = [&](const char* type, const char* name, std::size_t components, auto&& values) {
-    out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
-        << components << "\" format=\"ascii\">\n";
+  const auto per_face = [&](const char* type, const char* name, std::size_t components,
+                            auto&& values) {
+    out << "        <DataArray type=\"" << type << "\" Name=\"" << name
+        << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       for (std::size_t j = 0; j < blocks[i].parts.size(); ++j) {
         const std::vector<double> v = values(blocks[i], i, j);
-        for (std::size_t f = 0; f < blocks[i].parts[j].input_faces().size(); ++f) write_numbers(out, v);
+        for (std::size_t f = 0; f < blocks[i].parts[j].input_faces().size(); ++f)
+          write_numbers(out, v);
       }
     }
     out << "        </DataArray>\n";
@@ -192,7 +199,8 @@ void write_svg(const fs::path& file, std::span<const Block3dState> blocks,
   double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
   for (const DrawnFace& f : faces) {
     for (const auto& [x, y] : f.corners) {
-      xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+      xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y),
+      ymax = std::max(ymax, y);
     }
   }
   if (!(xmin < xmax && ymin < ymax && std::isfinite(xmax - xmin) && std::isfinite(ymax - ymin))) {
@@ -204,13 +212,14 @@ void write_svg(const fs::path& file, std::span<const Block3dState> blocks,
   AtomicFile output(file);
   std::ostream& out = output.stream();
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
-      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px) << "\">\n"
+      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
+      << "\">\n"
       << "  <title>t = " << number(time) << " s</title>\n"
       << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   for (const DrawnFace& f : faces) {
     const Block3dState& b = blocks[f.block];
     const bool is_tracked = std::find(tracked.begin(), tracked.end(), b.id) != tracked.end();
-    const std::array<int, 3> rgb = b.fixed ? std::array{189, 189, 189}
+    const std::array<int, 3> rgb = b.fixed      ? std::array{189, 189, 189}
                                    : is_tracked ? std::array{242, 142, 43}
                                                 : std::array{158, 202, 225};
     std::string points;
@@ -221,7 +230,8 @@ void write_svg(const fs::path& file, std::span<const Block3dState> blocks,
                 pixel((ymax + margin - y) * scale);
     }
     if (!finite) continue;
-    out << "  <polygon fill=\"" << shaded(rgb, f.shade) << "\" stroke=\"#303030\" stroke-width=\"0.5\" "
+    out << "  <polygon fill=\"" << shaded(rgb, f.shade)
+        << "\" stroke=\"#303030\" stroke-width=\"0.5\" "
         << "stroke-linejoin=\"round\" points=\"" << points << "\"><title>" << xml_escape(b.id)
         << "</title></polygon>\n";
   }
@@ -268,7 +278,8 @@ class Scene3dRecorder {
  public:
   Scene3dRecorder(const Scene3d& scene, fs::path dir) : dir_(std::move(dir)), track_(scene.track) {
     const double steps = std::ceil(scene.duration / scene.params.dt);
-    frame_digits_ = std::max<std::size_t>(4, decimal_digits(static_cast<std::size_t>(steps) / scene.every + 1));
+    frame_digits_ =
+        std::max<std::size_t>(4, decimal_digits(static_cast<std::size_t>(steps) / scene.every + 1));
     std::error_code ec;
     fs::create_directories(dir_, ec);
     if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
@@ -282,19 +293,21 @@ class Scene3dRecorder {
     const std::string t = number(simulation.time());
     const std::vector<Block3dState>& blocks = simulation.blocks();
     for (const std::string& id : track_) {
-      const auto b = std::find_if(blocks.begin(), blocks.end(), [&](const Block3dState& s) { return s.id == id; });
+      const auto b = std::find_if(blocks.begin(), blocks.end(),
+                                  [&](const Block3dState& s) { return s.id == id; });
       std::ostream& out = tracks_->stream();
-      out << t << ',' << csv_field(id) << ',' << number(b->centroid.x) << ',' << number(b->centroid.y) << ','
-          << number(b->centroid.z);
+      out << t << ',' << csv_field(id) << ',' << number(b->centroid.x) << ','
+          << number(b->centroid.y) << ',' << number(b->centroid.z);
       for (const double r : b->rotation) out << ',' << number(r);
       for (std::size_t k = 0; k < 6; ++k) out << ',' << number(velocity(*b, k));
       out << '\n';
     }
     if (!tracks_->stream()) throw OutputError("cannot write " + tracks_->target().string());
     for (const Contact3dState& c : simulation.contacts()) {
-      contacts_->stream() << t << ',' << csv_field(blocks[c.block_a].id) << ',' << csv_field(blocks[c.block_b].id)
-                          << ',' << number(c.point.x) << ',' << number(c.point.y) << ',' << number(c.point.z)
-                          << ',' << number(c.normal.x) << ',' << number(c.normal.y) << ','
+      contacts_->stream() << t << ',' << csv_field(blocks[c.block_a].id) << ','
+                          << csv_field(blocks[c.block_b].id) << ',' << number(c.point.x) << ','
+                          << number(c.point.y) << ',' << number(c.point.z) << ','
+                          << number(c.normal.x) << ',' << number(c.normal.y) << ','
                           << number(c.normal.z) << ',' << number(c.normal_force) << ','
                           << number(c.tangential_force) << ',' << mode_name(c.mode) << '\n';
     }
