@@ -222,7 +222,7 @@ BOOST_AUTO_TEST_CASE(step_count_rounds_up_but_not_for_decimal_noise) {
 }
 
 BOOST_AUTO_TEST_CASE(top_level_errors) {
-  expect_error([](json& d) { d["dimension"] = 3; }, "dimension", "3D scenes are not supported yet");
+  expect_error([](json& d) { d["dimension"] = 3; }, "dimension", "a 3D scene, read by parse_scene3d");
   expect_error([](json& d) { d["format"] = "rockcontact-scene/2"; }, "format",
                "the scene is written in format rockcontact-scene/2; this rockcontact reads "
                "rockcontact-scene/1");
@@ -407,7 +407,7 @@ BOOST_AUTO_TEST_CASE(file_errors_name_the_file) {
 
   const auto three_d = file_error(scene_dir + "/three_d.json");
   BOOST_TEST_REQUIRE(three_d.has_value());
-  BOOST_TEST(contains(three_d->what(), "three_d.json: dimension: 3D scenes are not supported yet"));
+  BOOST_TEST(contains(three_d->what(), "three_d.json: dimension: a 3D scene, read by parse_scene3d"));
 
   const auto missing = file_error(scene_dir + "/no_such_scene.json");
   BOOST_TEST_REQUIRE(missing.has_value());

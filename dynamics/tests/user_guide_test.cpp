@@ -2,11 +2,12 @@
 // The JSON examples of docs/user-guide.md and of the README load as they are printed.
 //
 // Every fenced ```json block is parsed with nlohmann::json. A block with "dimension" is a scene
-// and goes through parse_scene; a block with "pairs" is a `rockcontact pairs` input and goes
-// through parse_pairs; any other block (an excerpt of an output file) must at least be JSON.
+// and goes through parse_scene (parse_scene3d for "dimension": 3); a block with "pairs" is a
+// `rockcontact pairs` input and goes through parse_pairs; any other block (an excerpt of an
+// output file) must at least be JSON.
 // A block preceded by the line <!-- invalid --> is an example of a mistake: it must throw
-// InputError (malformed JSON counts too). The guide's first scene is also run to its end, and
-// what the guide says it writes must be there, with "status": "completed" in its summary.
+// InputError (malformed JSON counts too). The guide's first scene and its first 3D scene are
+// also run to their end, and what the guide says they write must be there.
 
 #include <boost/test/unit_test.hpp>
 #include <cstddef>
@@ -18,6 +19,8 @@
 
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/dynamics/io/scene3d.hpp"
+#include "rockcontact/dynamics/io/scene3d_output.hpp"
 #include "rockcontact/dynamics/io/scene_output.hpp"
 
 namespace dyn = rockcontact::dynamics;
@@ -100,13 +103,17 @@ Kind load(const Block& b, const std::string& name) {
     throw dyn::InputError(name, "", std::string("malformed JSON: ") + e.what());
   }
   const Kind kind = kind_of(doc);
-  if (kind == Kind::scene) dyn::parse_scene(doc, name);
+  if (kind == Kind::scene && dyn::is_scene3d_document(doc)) {
+    dyn::parse_scene3d(doc, name);
+  } else if (kind == Kind::scene) {
+    dyn::parse_scene(doc, name);
+  }
   if (kind == Kind::pairs) dyn::parse_pairs(doc, name);
   return kind;
 }
 
 struct Counts {
-  std::size_t scenes = 0, pairs = 0, invalid = 0;
+  std::size_t scenes = 0, scenes3d = 0, pairs = 0, invalid = 0;
 };
 
 Counts check_file(const fs::path& file) {
@@ -122,6 +129,7 @@ Counts check_file(const fs::path& file) {
       try {
         const Kind kind = load(b, name);
         counts.scenes += kind == Kind::scene;
+        counts.scenes3d += kind == Kind::scene && dyn::is_scene3d_document(json::parse(b.text));
         counts.pairs += kind == Kind::pairs;
       } catch (const std::exception& e) {
         BOOST_ERROR(name << " does not load: " << e.what());
@@ -140,6 +148,7 @@ BOOST_AUTO_TEST_CASE(every_json_block_of_the_guide_loads_or_fails_as_marked) {
   const Counts counts = check_file(guide);
   // The guide shows scenes, a pairs input and mistakes; finding none means the extraction broke.
   BOOST_TEST(counts.scenes >= 3u);
+  BOOST_TEST(counts.scenes3d >= 1u);
   BOOST_TEST(counts.pairs >= 1u);
   BOOST_TEST(counts.invalid >= 1u);
 }
@@ -193,4 +202,31 @@ BOOST_AUTO_TEST_CASE(the_first_scene_runs_and_writes_what_the_guide_lists) {
   const json summary = json::parse(in);
   BOOST_TEST(summary.at("status").get<std::string>() == "completed");
   BOOST_TEST(summary.at("steps").get<std::size_t>() == report.steps);
+}
+
+// The guide's first 3D scene, run to its end: the files its "What a 3D run writes" lists.
+BOOST_AUTO_TEST_CASE(the_first_3d_scene_runs_and_writes_what_the_guide_lists) {
+  json document;
+  for (const Block& b : json_blocks(guide)) {
+    const json doc = json::parse(b.text, nullptr, false);
+    if (!b.invalid && !doc.is_discarded() && kind_of(doc) == Kind::scene &&
+        dyn::is_scene3d_document(doc)) {
+      document = doc;
+      break;
+    }
+  }
+  BOOST_TEST_REQUIRE(!document.is_null());
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, "my_scene3d.json");
+  const fs::path dir = fs::current_path() / "user_guide_test" / "first_scene3d";
+  fs::remove_all(dir);
+  dyn::Run3dOptions options;
+  options.out_dir = dir;
+  const dyn::Run3dReport report = dyn::run_scene3d(scene, options);
+  BOOST_TEST(report.status == "completed", report.error);
+  BOOST_TEST(report.time >= scene.duration * (1.0 - 1e-12));
+  for (const char* file :
+       {"tracks.csv", "contacts.csv", "frames.pvd", "final.svg", "summary.json"}) {
+    BOOST_TEST(fs::exists(dir / file), file);
+  }
+  BOOST_TEST(report.frames >= 2u);
 }

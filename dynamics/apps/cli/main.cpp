@@ -4,12 +4,13 @@
 //
 // Exit status: 0 success (pairs with an invalid polygon are results, not failures), 2 malformed
 // input, bad flags, an output file that cannot be written or a scene the engine refuses or
-// stops (StabilityError), 3 a check that failed (a `validate` scene off its reference, a
-// `pairs --compare` that found a disagreement), 1 an unexpected internal error.
+// stops (StabilityError, Stability3dError), 3 a check that failed (a `validate` scene off its
+// reference, a `pairs --compare` that found a disagreement), 1 an unexpected internal error.
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,8 +20,10 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fuzz_cases.hpp"
@@ -34,6 +37,8 @@
 #include "rockcontact/dynamics/apps/pairs_summary.hpp"
 #include "rockcontact/dynamics/apps/report.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/dynamics/io/scene3d.hpp"
+#include "rockcontact/dynamics/io/scene3d_output.hpp"
 #include "rockcontact/dynamics/io/scene_output.hpp"
 #include "rockcontact/dynamics/apps/validation.hpp"
 #include "rockcontact/kernel/2d/demarcation.hpp"
@@ -168,22 +173,20 @@ class ProgressBar {
  public:
   ProgressBar() : enabled_(stderr_is_terminal()), start_(std::chrono::steady_clock::now()) {}
 
+  // `done` of `total` steps.
   void update(std::size_t done, std::size_t total) {
     if (!enabled_ || total == 0) return;
-    const std::size_t permille = done * 1000 / total;
-    if (permille == shown_) return;
-    shown_ = permille;
-    constexpr std::size_t width = 40;
-    const std::size_t filled = permille * width / 1000;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double remaining =
-        done == 0 ? 0.0 : elapsed * static_cast<double>(total - done) / static_cast<double>(done);
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
-              << std::fixed << std::setprecision(1) << std::setw(5)
-              << static_cast<double>(permille) / 10.0 << "%  step " << done << '/' << total << "  "
-              << elapsed << " s, " << remaining << " s to go   " << std::defaultfloat << std::flush;
-    drawn_ = true;
+    draw(done * 1000 / total, "step " + std::to_string(done) + '/' + std::to_string(total));
+  }
+
+  // A 3D run, whose step count is not known ahead (step cuts): `steps` taken, `time` of
+  // `duration` simulated.
+  void update_time(std::size_t steps, double time, double duration) {
+    if (!enabled_) return;
+    const double fraction = std::clamp(time / duration, 0.0, 1.0);
+    std::ostringstream what;
+    what << "step " << steps << ", t = " << std::setprecision(4) << time << " s";
+    draw(static_cast<std::size_t>(fraction * 1000.0), what.str());
   }
 
   // Ends the bar's line, if one was drawn.
@@ -193,11 +196,80 @@ class ProgressBar {
   }
 
  private:
+  void draw(std::size_t permille, const std::string& what) {
+    if (permille == shown_) return;
+    shown_ = permille;
+    constexpr std::size_t width = 40;
+    const std::size_t filled = permille * width / 1000;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double remaining = permille == 0 ? 0.0
+                                           : elapsed * static_cast<double>(1000 - permille) /
+                                                 static_cast<double>(permille);
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] "
+              << std::fixed << std::setprecision(1) << std::setw(5)
+              << static_cast<double>(permille) / 10.0 << "%  " << what << "  " << elapsed << " s, "
+              << remaining << " s to go   " << std::defaultfloat << std::flush;
+    drawn_ = true;
+  }
+
   bool enabled_;
   std::chrono::steady_clock::time_point start_;
   std::size_t shown_ = static_cast<std::size_t>(-1);
   bool drawn_ = false;
 };
+
+// A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
+int run_run3d(const RunArgs& options, const nlohmann::json& document) {
+  for (const auto& [given, flag] : {std::pair{options.checkpoint_every > 0, "--checkpoint-every"},
+                                    std::pair{!options.restart.empty(), "--restart"},
+                                    std::pair{options.threads > 0, "--threads"}}) {
+    if (given) {
+      std::cerr << "rockcontact: " << options.scene << ": " << flag
+                << " applies to 2D scenes only; the 3D engine has no checkpoints and runs on one "
+                   "thread\n";
+      return exit_bad_input;
+    }
+  }
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
+  ProgressBar bar;
+  dyn::Run3dOptions run_options;
+  run_options.out_dir = options.out;
+  run_options.progress = [&bar, &scene](std::size_t steps, double time) {
+    bar.update_time(steps, time, scene.duration);
+  };
+  dyn::Run3dReport report;
+  try {
+    report = dyn::run_scene3d(scene, run_options);
+  } catch (const std::invalid_argument& e) {  // a parameter or block the engine refuses
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  bar.finish();
+  if (report.status != "completed") {
+    std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << report.time
+              << " s: " << report.error << "\nrockcontact: the outputs up to the stop are in "
+              << options.out << '\n';
+    return exit_bad_input;
+  }
+  const double mean = report.steps == 0 ? 0.0
+                                        : static_cast<double>(report.open_close_total) /
+                                              static_cast<double>(report.steps);
+  std::cout << "scene: " << scene.source << " (3D, " << scene.blocks.size() << " blocks)\n"
+            << "steps: " << report.steps << " (t = " << report.time << " s, " << report.step_cuts
+            << " step cuts), wall " << report.simulation_seconds + report.output_seconds
+            << " s (simulation " << report.simulation_seconds << " s)\n"
+            << "open-close iterations per step: mean " << mean << ", max "
+            << report.open_close_max << '\n'
+            << "energy: total " << report.initial.total() << " J at the start, "
+            << report.final.total() << " J at the end\n"
+            << "predicates: " << report.predicates.total_calls() << " calls, "
+            << report.predicates.total_fallbacks() << " exact fallbacks; largest penetration "
+            << report.max_penetration << " m\n"
+            << "outputs: " << options.out << " (tracks.csv, contacts.csv, " << report.frames
+            << " frames in frames.pvd, final.svg, summary.json)\n";
+  return exit_ok;
+}
 
 int run_run(const RunArgs& options) {
   // --dt and --duration replace the document's values before it is parsed, so the scene's checks
@@ -207,6 +279,7 @@ int run_run(const RunArgs& options) {
     if (options.dt) document["time"]["dt"] = *options.dt;
     if (options.duration) document["time"]["duration"] = *options.duration;
   }
+  if (dyn::is_scene3d_document(document)) return run_run3d(options, document);
   dyn::Scene scene = dyn::parse_scene(document, options.scene);
   for (const std::string& warning : dyn::stiffness_warnings(scene)) {
     std::cerr << "rockcontact: " << options.scene << ": warning: " << warning << '\n';
@@ -266,10 +339,10 @@ void add_run(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<RunArgs>();
   CLI::App* sub = app.add_subcommand(
       "run",
-      "Run a scene (2D DDA with potential contact) and write its tracks, energies, contacts, "
-      "frames and summary. Units SI, forces per metre of thickness; contact kn in Pa, kt in N/m "
-      "(kt of kn to 2 kn; 2 kn is the normal stiffness of a face contact of length H). Every "
-      "field: docs/user-guide.md");
+      "Run a scene and write its tracks, contacts, frames and summary: 2D (explicit DDA with "
+      "potential contact; SI units, forces per metre of thickness, contact kn in Pa, kt in N/m) "
+      "or, with \"dimension\": 3, 3D (implicit DDA with penalty contact, kn and kt in N/m per "
+      "constraint). Every field: docs/user-guide.md");
   sub->add_option("scene", options->scene, "Scene JSON (fields: docs/user-guide.md)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();

@@ -132,7 +132,7 @@ Cut3Input parse_cut3(const json& document, const std::string& source_name) {
   return input;
 }
 
-ordered_json cut3d_blocks(const Cut3Input& input) {
+std::vector<kernel::CutBlock3> cut3d(const Cut3Input& input) {
   std::vector<kernel::ConvexPolyhedron> parts;
   for (std::size_t i = 0; i < input.region.size(); ++i) {
     const std::string name = input.region.size() == 1 ? "region" : "region.parts[" + std::to_string(i) + "]";
@@ -142,12 +142,15 @@ ordered_json cut3d_blocks(const Cut3Input& input) {
       throw InputError(input.source, name, e.what());
     }
   }
-  std::vector<kernel::CutBlock3> blocks;
   try {
-    blocks = kernel::cut_region<kernel::Filtered>(parts, input.joint_sets, input.id_prefix);
+    return kernel::cut_region<kernel::Filtered>(parts, input.joint_sets, input.id_prefix);
   } catch (const kernel::InvalidCut& e) {
     throw InputError(input.source, e.subject(), e.problem());
   }
+}
+
+ordered_json cut3d_blocks(const Cut3Input& input) {
+  const std::vector<kernel::CutBlock3> blocks = cut3d(input);
   ordered_json out = ordered_json::array();
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     ordered_json block;

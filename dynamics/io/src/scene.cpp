@@ -181,7 +181,7 @@ class SceneParser {
     }
     const json& value = document.at("dimension");
     if (value.is_number_integer() && value.get<std::int64_t>() == 3) {
-      reader_.fail("dimension", "3D scenes are not supported yet; expected 2");
+      reader_.fail("dimension", "a 3D scene, read by parse_scene3d (scene3d.hpp); expected 2 here");
     }
     if (!value.is_number_integer() || value.get<std::int64_t>() != 2) {
       reader_.fail_expected("dimension", "2", value);

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <system_error>
 #include <utility>
 
+#include "output_text.hpp"
 #include "rockcontact/dynamics/io/checkpoint.hpp"
 
 namespace rockcontact::dynamics {
@@ -18,65 +17,12 @@ namespace {
 
 using nlohmann::ordered_json;
 namespace fs = std::filesystem;
-
-// Shortest text that reads back as the same double ("0.1", "1e-05", "-3.25").
-std::string number(double value) {
-  std::array<char, 32> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), end);
-}
-
-// Pixel coordinates: two decimals are far below what a viewer shows.
-std::string pixel(double value) {
-  std::array<char, 32> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                       std::chars_format::fixed, 2);
-  return std::string(buffer.data(), end);
-}
-
-// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-std::string xml_escape(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
-
-// The head of a VTK XML PolyData file up to its one Piece's opening tag.
-void open_piece(std::ostream& out, std::size_t points, std::size_t verts, std::size_t polys) {
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n"
-      << "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << points << "\" NumberOfVerts=\"" << verts
-      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << polys << "\">\n";
-}
+using output_text::csv_field;
+using output_text::number;
+using output_text::open_piece;
+using output_text::pixel;
+using output_text::write_pvd;
+using output_text::xml_escape;
 
 void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
   std::size_t points = 0;
@@ -172,20 +118,6 @@ void write_contact_vtp(const fs::path& file, std::span<const ContactRow> rows) {
 }
 
 // A ParaView collection of the files of `frames`.
-void write_pvd(const fs::path& file, std::span<const std::pair<double, std::string>> frames) {
-  AtomicFile pvd(file);
-  std::ostream& out = pvd.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "  <Collection>\n";
-  for (const auto& [time, name] : frames) {
-    out << "    <DataSet timestep=\"" << number(time) << "\" group=\"\" part=\"0\" file=\""
-        << name << "\"/>\n";
-  }
-  out << "  </Collection>\n</VTKFile>\n";
-  pvd.commit();
-}
-
 bool all_finite(std::span<const kernel::Point2> polygon) {
   return std::all_of(polygon.begin(), polygon.end(),
                      [](const auto& p) { return std::isfinite(p.x) && std::isfinite(p.y); });

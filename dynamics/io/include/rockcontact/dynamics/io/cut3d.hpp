@@ -45,8 +45,12 @@ bool is_cut3_document(const nlohmann::json& document);
 // Throws InputError naming `source_name`, the field path and what was expected.
 Cut3Input parse_cut3(const nlohmann::json& document, const std::string& source_name);
 
-// The blocks as the output document above. Throws InputError naming "region" (a part that is
-// not a valid convex polyhedron) or the joint set field (kernel::InvalidCut).
+// The blocks cut from the region, numbered from 1 (kernel::cut_region). Throws InputError
+// naming "region" (a part that is not a valid convex polyhedron) or the joint set field
+// (kernel::InvalidCut).
+std::vector<kernel::CutBlock3> cut3d(const Cut3Input& input);
+
+// The blocks of cut3d as the output document above; throws what cut3d throws.
 nlohmann::ordered_json cut3d_blocks(const Cut3Input& input);
 
 }  // namespace rockcontact::dynamics

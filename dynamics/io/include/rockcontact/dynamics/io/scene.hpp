@@ -5,7 +5,7 @@
 //   {"format": "rockcontact-scene/1"                     (optional; another version is an
 //                                                          error naming the one it needs)
 //    "description": text                                  (optional, ignored by the run)
-//    "dimension": 2                                       (3: "not supported yet")
+//    "dimension": 2                                       (3: a 3D scene, scene3d.hpp)
 //    "time": {"dt": s > 0, "duration": s > 0},            (duration / dt at most 1e12 steps)
 //    "gravity": [gx, gy] m/s²                             (optional, default [0, -9.81])
 //    "plane": "stress" | "strain"                         (optional, default stress)

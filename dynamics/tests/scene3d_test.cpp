@@ -1,0 +1,363 @@
+#define BOOST_TEST_MODULE scene3d
+#include "rockcontact/dynamics/io/scene3d.hpp"
+
+#include <array>
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/dynamics/io/scene.hpp"
+
+namespace dyn = rockcontact::dynamics;
+namespace kernel = rockcontact::kernel;
+using nlohmann::json;
+
+namespace {
+
+const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
+const std::string examples3d = ROCKCONTACT_EXAMPLES_DIR "/scenes3d";
+
+// The box [lo, hi] as {"vertices", "faces"}, faces counter-clockwise seen from outside.
+json box(std::array<double, 3> lo, std::array<double, 3> hi) {
+  return {{"vertices",
+           {{lo[0], lo[1], lo[2]},
+            {hi[0], lo[1], lo[2]},
+            {hi[0], hi[1], lo[2]},
+            {lo[0], hi[1], lo[2]},
+            {lo[0], lo[1], hi[2]},
+            {hi[0], lo[1], hi[2]},
+            {hi[0], hi[1], hi[2]},
+            {lo[0], hi[1], hi[2]}}},
+          {"faces",
+           {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
+}
+
+// A block {"id", "group", "material": "rock", "vertices", "faces"} of the box [lo, hi].
+json box_block(const std::string& id, const std::string& group, std::array<double, 3> lo,
+               std::array<double, 3> hi) {
+  json b = box(lo, hi);
+  b["id"] = id;
+  b["group"] = group;
+  b["material"] = "rock";
+  return b;
+}
+
+// Every field of the format given once: a fixed slab, a cube on it, a fixed two-part wall.
+json contract_scene() {
+  json scene = json::parse(R"({"dimension": 3,
+   "time": {"dt": 2e-4, "duration": 0.5, "max_displacement_ratio": 0.002},
+   "gravity": [0.5, 0, -9.81],
+   "materials": {"rock": {"density": 2600, "youngs_modulus": 1e10, "poisson_ratio": 0.25},
+                 "soft": {"density": 1800, "youngs_modulus": 5e8, "poisson_ratio": 0.3}},
+   "contact": {"law": "penalty", "kn": 2e10, "kt": 3e9, "friction_angle_deg": 35, "cohesion": 100,
+               "tensile_strength": 50, "policy": "exact"},
+   "interfaces": [{"between": ["ground", "rock"], "friction_angle_deg": 20, "cohesion": 7}],
+   "output": {"track": ["cube"], "every": 10}})");
+  json slab = box_block("slab", "ground", {-2, -2, -1}, {2, 2, 0});
+  slab["fixed"] = true;
+  json cube = box_block("cube", "rock", {-0.5, -0.5, 0}, {0.5, 0.5, 1});
+  cube["material"] = "soft";
+  cube["rigid"] = true;
+  cube["velocity"] = {1, 2, 3, 0.1, 0.2, 0.3};
+  json wall = {{"id", "wall"},
+               {"group", "ground"},
+               {"material", "rock"},
+               {"fixed", true},
+               {"parts", {box({2, -2, 0}, {3, 2, 1}), box({2, 2, 0}, {3, 3, 1})}}};
+  scene["blocks"] = {slab, cube, wall};
+  return scene;
+}
+
+// `change` applied to the contract scene must be rejected with an error naming the source, the
+// JSON path and containing `expected`.
+void expect_error(const std::function<void(json&)>& change, const std::string& path,
+                  const std::string& expected) {
+  json document = contract_scene();
+  change(document);
+  BOOST_TEST_CONTEXT("path " << path) {
+    try {
+      dyn::parse_scene3d(document, "case.json");
+      BOOST_ERROR("accepted a malformed scene");
+    } catch (const dyn::InputError& e) {
+      const std::string message = e.what();
+      BOOST_TEST_MESSAGE(message);
+      BOOST_TEST(e.source() == "case.json");
+      BOOST_TEST(e.path() == path);
+      BOOST_TEST(message.find("case.json: " + path + ": ") == 0);
+      BOOST_TEST(message.find(expected) != std::string::npos,
+                 "message lacks \"" << expected << '"');
+    }
+  }
+}
+
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(values_land_in_their_fields) {
+  const dyn::Scene3d scene = dyn::parse_scene3d(contract_scene(), "contract.json");
+  BOOST_TEST(scene.source == "contract.json");
+  BOOST_TEST(scene.params.dt == 2e-4);
+  BOOST_TEST(scene.duration == 0.5);
+  BOOST_TEST(scene.params.max_displacement_ratio == 0.002);
+  BOOST_TEST(scene.params.gravity[0] == 0.5);
+  BOOST_TEST(scene.params.gravity[1] == 0.0);
+  BOOST_TEST(scene.params.gravity[2] == -9.81);
+  BOOST_TEST(scene.law.kn == 2e10);
+  BOOST_TEST(scene.law.kt == 3e9);
+  BOOST_TEST(scene.law.friction_angle_deg == 35.0);
+  BOOST_TEST(scene.law.cohesion == 100.0);
+  BOOST_TEST(scene.law.tensile_strength == 50.0);
+  BOOST_TEST((scene.law.policy == kernel::PolicyKind::exact));
+  BOOST_TEST_REQUIRE(scene.law.interfaces.size() == 1u);
+  const dyn::Interface3d& face = scene.law.interfaces[0];
+  BOOST_TEST(face.groups[0] == "ground");
+  BOOST_TEST(face.groups[1] == "rock");
+  BOOST_TEST(face.friction_angle_deg == 20.0);
+  BOOST_TEST(face.cohesion == 7.0);
+  BOOST_TEST(face.tensile_strength == 50.0);  // left out: the contact's
+  BOOST_TEST_REQUIRE(scene.blocks.size() == 3u);
+  const dyn::Block3dSpec& slab = scene.blocks[0];
+  BOOST_TEST(slab.id == "slab");
+  BOOST_TEST(slab.group == "ground");
+  BOOST_TEST(slab.fixed);
+  BOOST_TEST(!slab.rigid);
+  BOOST_TEST(slab.material.density == 2600.0);
+  BOOST_TEST_REQUIRE(slab.parts.size() == 1u);
+  BOOST_TEST(slab.parts[0].size() == 8u);
+  BOOST_TEST(slab.parts[0].input_faces().size() == 6u);
+  BOOST_TEST(slab.parts[0][6].x == 2.0);
+  BOOST_TEST(slab.parts[0][6].z == 0.0);
+  const dyn::Block3dSpec& cube = scene.blocks[1];
+  BOOST_TEST(!cube.fixed);
+  BOOST_TEST(cube.rigid);
+  BOOST_TEST(cube.material.density == 1800.0);
+  BOOST_TEST(cube.material.youngs_modulus == 5e8);
+  BOOST_TEST(cube.material.poisson_ratio == 0.3);
+  const std::array<double, 6> velocity{1, 2, 3, 0.1, 0.2, 0.3};
+  BOOST_TEST(cube.velocity == velocity);
+  BOOST_TEST(scene.blocks[2].parts.size() == 2u);
+  BOOST_TEST(scene.blocks[2].fixed);
+  BOOST_TEST(scene.material_names[1] == "soft");
+  BOOST_TEST(scene.generated_count == 0u);
+  BOOST_TEST(scene.track == std::vector<std::string>{"cube"});
+  BOOST_TEST(scene.every == 10u);
+}
+
+BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
+  json document = contract_scene();
+  for (const char* key : {"gravity", "interfaces", "output"}) document.erase(key);
+  document["time"].erase("max_displacement_ratio");
+  for (const char* key : {"friction_angle_deg", "cohesion", "tensile_strength", "policy"}) {
+    document["contact"].erase(key);
+  }
+  document["blocks"][1].erase("velocity");
+  document["blocks"][1].erase("rigid");
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, "defaults.json");
+  BOOST_TEST(scene.params.max_displacement_ratio == 0.001);
+  BOOST_TEST(scene.params.gravity[2] == -9.81);
+  BOOST_TEST(scene.law.friction_angle_deg == 0.0);
+  BOOST_TEST(scene.law.cohesion == 0.0);
+  BOOST_TEST(scene.law.tensile_strength == 0.0);
+  BOOST_TEST((scene.law.policy == kernel::PolicyKind::filtered));
+  BOOST_TEST(scene.law.interfaces.empty());
+  BOOST_TEST(!scene.blocks[1].rigid);
+  BOOST_TEST(scene.blocks[1].velocity == (std::array<double, 6>{}));
+  BOOST_TEST(scene.every == 100u);
+  BOOST_TEST(scene.track == std::vector<std::string>{"cube"});  // the only block not fixed
+}
+
+// Each malformed field is named by its JSON path, with what was expected.
+BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
+  expect_error([](json& d) { d["colour"] = "red"; }, "colour",
+               "unknown field; expected only format");
+  expect_error([](json& d) { d["blocks"][1]["mass"] = 1; }, "blocks[1].mass", "unknown field");
+  expect_error([](json& d) { d["dimension"] = 2; }, "dimension", "expected 3, got number 2");
+  expect_error([](json& d) { d["time"]["dt"] = not_a_number; }, "time.dt",
+               "expected the largest time step");
+  expect_error([](json& d) { d["gravity"][2] = not_a_number; }, "gravity[2]",
+               "expected a finite number");
+  for (const double ratio : {0.0, 1.0, -0.5, 1.5}) {
+    expect_error([&](json& d) { d["time"]["max_displacement_ratio"] = ratio; },
+                 "time.max_displacement_ratio",
+                 "expected the largest vertex displacement of a step over the scene's size, a "
+                 "number in (0, 1)");
+  }
+  expect_error([](json& d) { d["time"]["max_displacement_ratio"] = not_a_number; },
+               "time.max_displacement_ratio", "a number in (0, 1), got non-finite number");
+  expect_error([](json& d) { d["blocks"][1]["material"] = "granite"; }, "blocks[1].material",
+               "unknown material \"granite\"; expected one of the scene's materials (rock, soft)");
+  expect_error([](json& d) { d["blocks"][2]["id"] = "slab"; }, "blocks[2].id",
+               "duplicate id \"slab\" (also blocks[0].id)");
+  expect_error([](json& d) { d["interfaces"][0]["between"][1] = "rocks"; },
+               "interfaces[0].between[1]", "no block is in the group \"rocks\"");
+  expect_error(
+      [](json& d) {
+        d["interfaces"].push_back({{"between", {"rock", "ground"}}});
+      },
+      "interfaces[1].between", "already have an interface (interfaces[0])");
+  expect_error([](json& d) { d["interfaces"][0]["friction_angle_deg"] = 90; },
+               "interfaces[0].friction_angle_deg", "a number in [0, 90)");
+  expect_error([](json& d) { d["contact"]["law"] = "potential"; }, "contact.law",
+               "expected \"penalty\"");
+  expect_error([](json& d) { d["contact"].erase("kt"); }, "contact.kt", "missing field");
+  expect_error([](json& d) { d["contact"]["tensile_strength"] = -1; }, "contact.tensile_strength",
+               "a finite number >= 0");
+  expect_error([](json& d) { d["blocks"][0]["velocity"] = {0, 0, 0, 0, 0, 0}; },
+               "blocks[0].velocity", "a fixed block does not move");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["velocity"] = {0, 0, 0, 0, 0};
+      },
+      "blocks[1].velocity", "expected the centroid velocity [vx, vy, vz, wx, wy, wz]");
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["parts"] = json::array({box({0, 0, 0}, {1, 1, 1})});
+      },
+      "blocks[1]", "expected exactly one of \"vertices\" with \"faces\"");
+  expect_error([](json& d) { d["blocks"][1].erase("faces"); }, "blocks[1].faces", "missing field");
+  expect_error([](json& d) { d["blocks"][1]["faces"][2][1] = -1; }, "blocks[1].faces[2][1]",
+               "expected a vertex index, an integer >= 0");
+  expect_error(
+      [](json& d) {
+        d["output"]["track"] = {"slab", "ghost"};
+      },
+      "output.track[1]", "no block has the id \"ghost\"");
+  expect_error([](json& d) { d["output"]["every"] = 0; }, "output.every", "an integer >= 1");
+  expect_error([](json& d) { d["joint_sets"] = json::array(); }, "joint_sets",
+               "expected a \"region\" beside them");
+  expect_error([](json& d) { d.erase("blocks"); }, "blocks", "the scene has no blocks");
+}
+
+// The kernel's InvalidPolyhedron mapped onto the JSON path of the face or vertex it names.
+BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
+  // The top face left out: the top edge 4 -> 7 of the side face now at index 4 has no reverse.
+  expect_error([](json& d) { d["blocks"][1]["faces"].erase(1); }, "blocks[1].faces[4]",
+               "polyhedron 'cube', face 4, vertex 4: edge 4 -> 7 has no neighbouring face "
+               "traversing it back");
+  // The top face clockwise seen from outside: its edge 5 -> 4 runs as face 2's does.
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["faces"][1] = {7, 6, 5, 4};
+      },
+      "blocks[1].faces[2]",
+      "polyhedron 'cube', face 2, vertex 5: edge 5 -> 4 is traversed in the same direction by face "
+      "1");
+  expect_error([](json& d) { d["blocks"][1]["vertices"][6][2] = not_a_number; },
+               "blocks[1].vertices[6]", "polyhedron 'cube', vertex 6");
+  expect_error([](json& d) { d["blocks"][2]["parts"][1]["vertices"][0][0] = not_a_number; },
+               "blocks[2].parts[1].vertices[0]", "polyhedron 'wall.2', vertex 0");
+  // Zero volume: a "tetrahedron" whose four vertices lie in the plane z = 0.
+  expect_error(
+      [](json& d) {
+        d["blocks"][1]["vertices"] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 0}};
+        d["blocks"][1]["faces"] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+      },
+      "blocks[1].vertices", "polyhedron 'cube': every vertex lies in one plane, zero volume");
+}
+
+BOOST_AUTO_TEST_CASE(malformed_json_names_the_file) {
+  const std::filesystem::path file =
+      std::filesystem::current_path() / "scene3d_test_malformed.json";
+  std::ofstream(file) << "{\"dimension\": 3,\n \"time\": {\"dt\": 1e-3,}\n}\n";
+  try {
+    dyn::read_scene3d_file(file);
+    BOOST_ERROR("accepted malformed JSON");
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST_MESSAGE(e.what());
+    BOOST_TEST(e.path().empty());
+    BOOST_TEST(std::string(e.what()).find(file.string() + ": malformed JSON: ") == 0);
+    BOOST_TEST(std::string(e.what()).find("line 2") != std::string::npos);
+  }
+}
+
+// The 2D reader says where a 3D scene goes; the 3D reader reads it.
+BOOST_AUTO_TEST_CASE(the_readers_dispatch_on_the_dimension) {
+  const json document = contract_scene();
+  BOOST_TEST(dyn::is_scene3d_document(document));
+  try {
+    dyn::parse_scene(document, "case.json");
+    BOOST_ERROR("the 2D reader accepted a 3D scene");
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST(e.path() == "dimension");
+    BOOST_TEST(std::string(e.what()).find("a 3D scene, read by parse_scene3d") !=
+               std::string::npos);
+  }
+  BOOST_TEST(dyn::read_scene3d_file(scene_dir + "/three_d.json").blocks.size() == 2u);
+}
+
+// The shipped 3D scenes (examples/scenes3d/README.md): the §6.1 wedge on its fixed, non-convex
+// base, and the 18 blocks of §6.3 on a ground slab.
+BOOST_AUTO_TEST_CASE(the_example_scenes_parse) {
+  const dyn::Scene3d wedge = dyn::read_scene3d_file(examples3d + "/wedge.json");
+  BOOST_TEST_REQUIRE(wedge.blocks.size() == 2u);
+  BOOST_TEST(wedge.blocks[0].id == "base");
+  BOOST_TEST(wedge.blocks[0].fixed);
+  BOOST_TEST(wedge.blocks[0].parts.size() == 3u);
+  BOOST_TEST(wedge.blocks[1].id == "wedge");
+  BOOST_TEST(wedge.law.interfaces.size() == 1u);
+  BOOST_TEST(wedge.track == std::vector<std::string>{"wedge"});
+  BOOST_TEST(wedge.every == 10u);
+  const dyn::Scene3d system = dyn::read_scene3d_file(examples3d + "/block_system.json");
+  BOOST_TEST(system.blocks.size() == 19u);
+  BOOST_TEST(system.track.size() == 18u);
+  BOOST_TEST(system.law.friction_angle_deg == 0.0);
+}
+
+// "region" + "joint_sets" as `rockcontact cut` reads them: a 2 m tall box cut by horizontal
+// joints at z = 0.5 and 1.5 is three slabs, "r_1" .. "r_3", after the explicit blocks.
+BOOST_AUTO_TEST_CASE(a_region_is_cut_into_blocks) {
+  json document = contract_scene();
+  document["region"] = {{"box", {{"min", {-1, -1, 0}}, {"max", {1, 1, 2}}}},
+                        {"material", "soft"},
+                        {"group", "rock"},
+                        {"id_prefix", "r"}};
+  document["joint_sets"] = {
+      {{"dip_deg", 0}, {"dip_direction_deg", 0}, {"spacing", 1}, {"offset", 0.5}}};
+  document["blocks"].erase(1);
+  document.erase("output");
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, "region.json");
+  BOOST_TEST(scene.generated_first == 2u);
+  BOOST_TEST_REQUIRE(scene.generated_count == 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const dyn::Block3dSpec& b = scene.blocks[2 + k];
+    BOOST_TEST(b.id == "r_" + std::to_string(k + 1));
+    BOOST_TEST(b.group == "rock");
+    BOOST_TEST(b.material.density == 1800.0);
+    BOOST_TEST(!b.fixed);
+    BOOST_TEST(scene.material_names[2 + k] == "soft");
+  }
+  BOOST_TEST(scene.track == (std::vector<std::string>{"r_1", "r_2", "r_3"}));
+
+  document["joint_sets"][0]["spacing"] = -1;
+  try {
+    dyn::parse_scene3d(document, "region.json");
+    BOOST_ERROR("accepted a negative spacing");
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST(e.path() == "joint_sets[0].spacing");
+  }
+  document["joint_sets"][0]["spacing"] = 1;
+  document["region"].erase("material");
+  try {
+    dyn::parse_scene3d(document, "region.json");
+    BOOST_ERROR("accepted a region without a material");
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST(e.path() == "region.material");
+  }
+  document["region"]["material"] = "soft";
+  document["region"]["id_prefix"] = "slab";
+  document["region"]["box"]["max"][2] = 0.4;  // below the first joint: one block, "slab_1"
+  document["blocks"][0]["id"] = "slab_1";
+  try {
+    dyn::parse_scene3d(document, "region.json");
+    BOOST_ERROR("accepted a generated id equal to a block's");
+  } catch (const dyn::InputError& e) {
+    BOOST_TEST(e.path() == "region.id_prefix");
+  }
+}
