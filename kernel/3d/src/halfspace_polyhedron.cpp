@@ -93,7 +93,8 @@ constexpr double vertex_tolerance = 0x1p-42;
 // An implicit vertex in double with a bound on its error: with S and D the computed det X and
 // det, and ES, ED their running bounds,
 //   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
-// plus one rounding of the quotient. No point when |D| <= ED (the sign of det is not certain).
+// plus one rounding of the quotient (RunningError::rounding: eps relative, and 2^-1069 should
+// it underflow). No point when |D| <= ED (the sign of det is not certain).
 // The bound itself is computed in double, to within a few eps relative: negligible against the
 // 2^-42 it is compared with.
 struct CertifiedPoint {
@@ -111,14 +112,20 @@ std::optional<CertifiedPoint> certified_point(const detail::PlaneCoefficients<Bo
   const Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value,
                              x.scaled.z.value / x.det.value};
   const auto error = [&](double xi, const Bounded& si) {
-    return (std::fabs(xi) * ed + bound_rounding_margin * si.error) / (d - ed) + 0x1p-52 * std::fabs(xi);
+    return (std::fabs(xi) * ed + bound_rounding_margin * si.error) / (d - ed) + Bounded::rounding(xi);
   };
   return CertifiedPoint{out, std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)})};
 }
 
-// An implicit vertex from its exact homogeneous coordinates: det X and det evaluated exactly in
-// CGAL::Mpzf (no gcd, unlike rationals), each rounded to double (CGAL's Mpzf::to_double is
-// within 2 eps relative), then divided: within 5 eps of |X| per coordinate.
+// An implicit vertex from its exact homogeneous coordinates, det X and det evaluated exactly in
+// CGAL::Mpzf (no gcd, unlike rationals). CGAL's Mpzf::to_double is within 2 eps relative only
+// where its result is a normal double: below 2^-1022 it rounds to a multiple of 2^-1074, so a
+// det of a few 2^-1074 (two face planes at a dihedral angle of that order, from a subnormal
+// coordinate) keeps one or two significant bits and the quotient of the two roundings is off by
+// any factor (0 for -0.3 and -1 for -0.7 in intersection_test.cpp's
+// subnormal_coordinate_beside_a_gap), or 0/0. So the rounded det X and det are divided only
+// when each is a normal double (or an exact zero), within 5 eps of |X| then; otherwise the
+// exact rational quotient is rounded once (NumberOps: to nearest).
 Vector3T<double> exact_quotient_point(const HalfspacePolyhedron& h, const HalfspacePolyhedron::Vertex& v,
                                       const Point3& o) {
   using T = CGAL::Mpzf;
@@ -130,7 +137,15 @@ Vector3T<double> exact_quotient_point(const HalfspacePolyhedron& h, const Halfsp
     return {nan, nan, nan};
   }
   const double det = CGAL::to_double(x.det);
-  return {CGAL::to_double(x.scaled.x) / det, CGAL::to_double(x.scaled.y) / det, CGAL::to_double(x.scaled.z) / det};
+  const Vector3T<double> scaled{CGAL::to_double(x.scaled.x), CGAL::to_double(x.scaled.y), CGAL::to_double(x.scaled.z)};
+  const auto relative = [](double rounded, const T& exact) { return std::isnormal(rounded) || CGAL::is_zero(exact); };
+  if (std::isnormal(det) && relative(scaled.x, x.scaled.x) && relative(scaled.y, x.scaled.y) &&
+      relative(scaled.z, x.scaled.z)) {
+    return {scaled.x / det, scaled.y / det, scaled.z / det};
+  }
+  const ExactRational d(x.det);
+  const auto round = [&](const T& s) { return detail::NumberOps<ExactRational>::to_double(ExactRational(s) / d); };
+  return {round(x.scaled.x), round(x.scaled.y), round(x.scaled.z)};
 }
 
 // Every vertex in the frame of o in double: an input point's difference rounded once, an

@@ -25,8 +25,9 @@
 //                            of two blocks parallel to within rounding: about 7% of the implicit
 //                            vertices of the contact3d random pairs) is instead divided from its
 //                            exact homogeneous coordinates (det X and det in CGAL::Mpzf, each
-//                            rounded once), within 5 eps of its size. Exact: Cramer's rule in
-//                            exact rationals, each coordinate rounded once.
+//                            rounded once where both are normal doubles, else their exact
+//                            quotient rounded once), within 5 eps of its size. Exact: Cramer's
+//                            rule in exact rationals, each coordinate rounded once.
 //   volume<P>()              divergence theorem: the sum over faces of the fan triangles'
 //                            signed tetrahedron volumes (1/6 det) about the first vertex, in
 //                            the same local frame; Exact: the exact rational volume rounded
