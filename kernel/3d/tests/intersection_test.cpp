@@ -216,7 +216,9 @@ BOOST_AUTO_TEST_CASE(contact3d_vertex_accuracy) {
 // rounded to (0, 2^-1074): Filtered put that vertex at (0.5, -0.5, 0) instead of (0.2, -0.2, 0)
 // and the volume at 5.96e-10 m^3 instead of 5.2154e-10 (and NaN in generated face_face pairs
 // where a det rounded to zero). Asserted: every vertex within its certificate of Exact's, as in
-// contact3d_vertex_accuracy.
+// contact3d_vertex_accuracy, and the volume within the bound of intersection.hpp, 2^-31 |V| or
+// 2^-41 s^3 (s = 2 m, the pair's largest extent), plus half an ulp (Exact's volume is V rounded
+// once); when pushed, V is the box 0.8 x 0.7 x 2^-30 (the wedge under the bend is below 1e-300).
 BOOST_AUTO_TEST_CASE(subnormal_coordinate_beside_a_gap) {
   const auto lifted_box = [](double z) {
     return ConvexPolyhedron::make(
@@ -225,6 +227,7 @@ BOOST_AUTO_TEST_CASE(subnormal_coordinate_beside_a_gap) {
          {-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, z}},
         {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
   };
+  const double s = 2.0;
   for (const double z : {0x1p-1074, 0x1p-1062}) {
     for (const double gap : {-0x1p-30, 0.0}) {
       const ConvexPolyhedron a = lifted_box(z);
@@ -233,6 +236,12 @@ BOOST_AUTO_TEST_CASE(subnormal_coordinate_beside_a_gap) {
         const ConvexPolyhedron& p = swap ? b : a;
         const ConvexPolyhedron& q = swap ? a : b;
         BOOST_TEST_INFO("z " << z << " gap " << gap << (swap ? " (b, a)" : " (a, b)"));
+        const double exact = rk::intersection_volume<rk::Exact>(p, q);
+        const double ulp = std::nextafter(exact, INFINITY) - exact;
+        const double tolerance = std::max(0x1p-31 * std::fabs(exact), 0x1p-41 * s * s * s) + ulp / 2;
+        BOOST_TEST(std::fabs(rk::intersection_volume<rk::Filtered>(p, q) - exact) <= tolerance);
+        BOOST_TEST(std::fabs(rk::intersection_volume<rk::Checked>(p, q) - exact) <= tolerance);
+        if (gap < 0) BOOST_TEST(std::fabs(exact - 0.8 * 0.7 * 0x1p-30) <= 1e-9 * exact);
         const HalfspacePolyhedron h = rk::intersection<rk::Exact>(p, q);
         const std::vector<Point3> filtered = h.vertex_coordinates<rk::Filtered>();
         const std::vector<Point3> exact_vertices = h.vertex_coordinates<rk::Exact>();
