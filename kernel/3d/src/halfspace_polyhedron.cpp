@@ -85,15 +85,17 @@ using Bounded = detail::RunningError;
 using detail::bound_rounding_margin;
 
 // A double vertex is kept when certified within 2^-42 of the polyhedron's extent (the largest
-// frame coordinate of its vertices, bounded from below): a volume then moves by at most about
-// area * 2^-42 * extent, below the 1e-12 scale^3 the contact3d README allows near zero and far
-// below its 1e-9 relative tolerance.
+// frame coordinate of its vertices, bounded from below). The volume then moves by up to sqrt 3
+// times that per unit of surface area, more than volume_tolerance extent^3 on a large thin
+// polyhedron: certified_volume takes its own bound, and where it must those vertices are
+// divided from their exact homogeneous coordinates instead (sharpen).
 constexpr double vertex_tolerance = 0x1p-42;
 
 // An implicit vertex in double with a bound on its error: with S and D the computed det X and
 // det, and ES, ED their running bounds,
 //   |S/D - X| <= (|S/D| ED + ES) / (|D| - ED)   (when |D| > ED),
-// plus one rounding of the quotient. No point when |D| <= ED (the sign of det is not certain).
+// plus one rounding of the quotient (RunningError::rounding: eps relative, and 2^-1069 should
+// it underflow). No point when |D| <= ED (the sign of det is not certain).
 // The bound itself is computed in double, to within a few eps relative: negligible against the
 // 2^-42 it is compared with.
 struct CertifiedPoint {
@@ -111,14 +113,20 @@ std::optional<CertifiedPoint> certified_point(const detail::PlaneCoefficients<Bo
   const Vector3T<double> out{x.scaled.x.value / x.det.value, x.scaled.y.value / x.det.value,
                              x.scaled.z.value / x.det.value};
   const auto error = [&](double xi, const Bounded& si) {
-    return (std::fabs(xi) * ed + bound_rounding_margin * si.error) / (d - ed) + 0x1p-52 * std::fabs(xi);
+    return (std::fabs(xi) * ed + bound_rounding_margin * si.error) / (d - ed) + Bounded::rounding(xi);
   };
   return CertifiedPoint{out, std::max({error(out.x, x.scaled.x), error(out.y, x.scaled.y), error(out.z, x.scaled.z)})};
 }
 
-// An implicit vertex from its exact homogeneous coordinates: det X and det evaluated exactly in
-// CGAL::Mpzf (no gcd, unlike rationals), each rounded to double (CGAL's Mpzf::to_double is
-// within 2 eps relative), then divided: within 5 eps of |X| per coordinate.
+// An implicit vertex from its exact homogeneous coordinates, det X and det evaluated exactly in
+// CGAL::Mpzf (no gcd, unlike rationals). CGAL's Mpzf::to_double is within 2 eps relative only
+// where its result is a normal double: below 2^-1022 it rounds to a multiple of 2^-1074, so a
+// det of a few 2^-1074 (two face planes at a dihedral angle of that order, from a subnormal
+// coordinate) keeps one or two significant bits and the quotient of the two roundings is off by
+// any factor (0 for -0.3 and -1 for -0.7 in intersection_test.cpp's
+// subnormal_coordinate_beside_a_gap), or 0/0. So the rounded det X and det are divided only
+// when each is a normal double (or an exact zero), within 5 eps of |X| then; otherwise the
+// exact rational quotient is rounded once (NumberOps: to nearest).
 Vector3T<double> exact_quotient_point(const HalfspacePolyhedron& h, const HalfspacePolyhedron::Vertex& v,
                                       const Point3& o) {
   using T = CGAL::Mpzf;
@@ -130,12 +138,35 @@ Vector3T<double> exact_quotient_point(const HalfspacePolyhedron& h, const Halfsp
     return {nan, nan, nan};
   }
   const double det = CGAL::to_double(x.det);
-  return {CGAL::to_double(x.scaled.x) / det, CGAL::to_double(x.scaled.y) / det, CGAL::to_double(x.scaled.z) / det};
+  const Vector3T<double> scaled{CGAL::to_double(x.scaled.x), CGAL::to_double(x.scaled.y), CGAL::to_double(x.scaled.z)};
+  const auto relative = [](double rounded, const T& exact) { return std::isnormal(rounded) || CGAL::is_zero(exact); };
+  if (std::isnormal(det) && relative(scaled.x, x.scaled.x) && relative(scaled.y, x.scaled.y) &&
+      relative(scaled.z, x.scaled.z)) {
+    return {scaled.x / det, scaled.y / det, scaled.z / det};
+  }
+  const ExactRational d(x.det);
+  const auto round = [&](const T& s) { return detail::NumberOps<ExactRational>::to_double(ExactRational(s) / d); };
+  return {round(x.scaled.x), round(x.scaled.y), round(x.scaled.z)};
 }
 
-// Every vertex in the frame of o in double: an input point's difference rounded once, an
-// implicit point certified in double, else from its exact homogeneous coordinates.
-std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
+// Every vertex in the frame of o in double, with a bound on the error of each of its coordinates,
+// and a lower bound on the extent (the largest frame coordinate of the exact vertices).
+struct FrameCoordinates {
+  std::vector<Vector3T<double>> x;
+  std::vector<double> error;  // of each coordinate of x[v], m
+  double extent = 0.0;        // m
+};
+
+double max_abs(const Vector3T<double>& x) { return std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}); }
+
+// The error bound of a vertex from exact_quotient_point: 5 eps < 2^-49 of |X|, or half an ulp
+// of a subnormal.
+double quotient_error(const Vector3T<double>& x) { return 0x1p-49 * max_abs(x) + 0x1p-1074; }
+
+// An input point's difference rounded once (within eps of it, exact when subnormal), an
+// implicit point certified in double, else from its exact homogeneous coordinates (within
+// 5 eps < 2^-49 of |X| plus 2^-1074, exact_quotient_point).
+FrameCoordinates frame_coordinates(const HalfspacePolyhedron& h, const Point3& o) {
   std::vector<detail::PlaneCoefficients<Bounded>> planes;
   planes.reserve(h.planes().size());
   for (const Plane3& plane : h.planes()) planes.push_back(detail::plane_coefficients<Bounded>(plane, o));
@@ -143,47 +174,147 @@ std::vector<Vector3T<double>> frame_coordinates(const HalfspacePolyhedron& h, co
   // largest frame coordinate of the exact vertices, |x| - error over the candidates, so a
   // badly conditioned candidate cannot widen the tolerance of the others.
   std::vector<std::optional<CertifiedPoint>> candidates(h.vertices().size());
-  double extent = 0.0;
-  const auto widen = [&](const CertifiedPoint& c) {
-    extent = std::max({extent, std::fabs(c.x.x) - c.error, std::fabs(c.x.y) - c.error, std::fabs(c.x.z) - c.error});
-  };
+  FrameCoordinates out;
+  const auto widen = [&](const CertifiedPoint& c) { out.extent = std::max(out.extent, max_abs(c.x) - c.error); };
   for (std::size_t i = 0; i < h.vertices().size(); ++i) {
     const HalfspacePolyhedron::Vertex& v = h.vertices()[i];
     if (v.input) {
-      candidates[i] = CertifiedPoint{detail::difference3<double>(v.point, o), 0.0};
+      const Vector3T<double> x = detail::difference3<double>(v.point, o);
+      candidates[i] = CertifiedPoint{x, 0x1p-52 * max_abs(x)};
     } else {
       candidates[i] = certified_point(planes[v.planes[0]], planes[v.planes[1]], planes[v.planes[2]]);
     }
     if (candidates[i]) widen(*candidates[i]);
   }
-  std::vector<Vector3T<double>> out;
-  out.reserve(h.vertices().size());
+  out.x.reserve(h.vertices().size());
+  out.error.reserve(h.vertices().size());
   for (std::size_t i = 0; i < h.vertices().size(); ++i) {
     const auto& c = candidates[i];
-    const bool certified = c && c->error <= vertex_tolerance * extent;
-    out.push_back(certified ? c->x : exact_quotient_point(h, h.vertices()[i], o));
+    if (c && c->error <= vertex_tolerance * out.extent) {
+      out.x.push_back(c->x);
+      out.error.push_back(c->error);
+    } else {
+      out.x.push_back(exact_quotient_point(h, h.vertices()[i], o));
+      out.error.push_back(quotient_error(out.x.back()));
+    }
   }
   return out;
 }
 
-// Six times the volume: the divergence theorem with the faces fanned into triangles
+// Every implicit vertex certified to worse than 2^-48 of the extent taken from its exact
+// homogeneous coordinates instead: the second stage of the volume (certified_volume).
+void sharpen(const HalfspacePolyhedron& h, const Point3& o, FrameCoordinates& frame) {
+  for (std::size_t i = 0; i < h.vertices().size(); ++i) {
+    if (h.vertices()[i].input || frame.error[i] <= 0x1p-48 * frame.extent) continue;
+    frame.x[i] = exact_quotient_point(h, h.vertices()[i], o);
+    frame.error[i] = quotient_error(frame.x[i]);
+  }
+}
+
+// Six times the volume by the divergence theorem: the faces fanned into triangles
 // (x0, x_i, x_{i+1}), each counter-clockwise from outside, against the apex c = the first
-// vertex: sum of det(x0 - c, x_i - c, x_{i+1} - c).
+// vertex, S = sum of det(x0 - c, x_i - c, x_{i+1} - c). The differences y_v = x_v - c are taken
+// once per vertex; term(a, b, d) is called with the vertex ids of each fan triangle.
+template <class T>
+std::vector<Vector3T<T>> from_apex(const std::vector<Vector3T<T>>& x) {
+  std::vector<Vector3T<T>> y;
+  y.reserve(x.size());
+  for (const Vector3T<T>& v : x) y.push_back({T(v.x - x.front().x), T(v.y - x.front().y), T(v.z - x.front().z)});
+  return y;
+}
+
+template <class Term>
+void for_each_fan_triangle(const HalfspacePolyhedron& h, Term term) {
+  for (const HalfspacePolyhedron::Face& face : h.faces()) {
+    for (std::size_t i = 1; i + 1 < face.loop.size(); ++i) term(face.loop[0], face.loop[i], face.loop[i + 1]);
+  }
+}
+
+template <class T>
+T fan_term(const std::vector<Vector3T<T>>& y, std::uint32_t a, std::uint32_t b, std::uint32_t d) {
+  return detail::dot(y[a], detail::cross(y[b], y[d]));
+}
+
 template <class T>
 T six_volume(const HalfspacePolyhedron& h, const std::vector<Vector3T<T>>& x) {
   T sum(0);
   if (x.empty()) return sum;
-  const Vector3T<T>& c = x.front();
-  const auto from_c = [&](std::uint32_t v) {
-    return Vector3T<T>{T(x[v].x - c.x), T(x[v].y - c.y), T(x[v].z - c.z)};
-  };
-  for (const HalfspacePolyhedron::Face& face : h.faces()) {
-    const Vector3T<T> a = from_c(face.loop[0]);
-    for (std::size_t i = 1; i + 1 < face.loop.size(); ++i) {
-      sum = sum + detail::dot(a, detail::cross(from_c(face.loop[i]), from_c(face.loop[i + 1])));
-    }
-  }
+  const std::vector<Vector3T<T>> y = from_apex(x);
+  for_each_fan_triangle(h, [&](std::uint32_t a, std::uint32_t b, std::uint32_t d) { sum = sum + fan_term(y, a, b, d); });
   return sum;
+}
+
+// The double volume V~ is kept when certified within volume_relative_tolerance of |V|, or within
+// volume_tolerance R^3, R the largest frame coordinate of the polyhedron's vertices and of the
+// points its planes are through: for an intersection, input points of the pair, so R is at most
+// the largest extent s of the pair's bounding box. 2^-31 and 2^-41 are below half the robustness
+// harness's 1e-9 relative and 1e-12 s^3 (robustness_tests/pair3d_queries.hpp), so two volumes of
+// one pair, Filtered's and Exact's or (a, b)'s and (b, a)'s, agree within those.
+constexpr double volume_relative_tolerance = 0x1p-31;
+constexpr double volume_tolerance = 0x1p-41;
+
+// A lower bound on the largest frame coordinate of the points h's planes are through (planes
+// given by coefficients have none): each difference rounded once, within eps of it.
+double plane_point_extent(const HalfspacePolyhedron& h, const Point3& o) {
+  double out = 0.0;
+  for (const Plane3& plane : h.planes()) {
+    if (plane.kind != Plane3::Kind::through_points) continue;
+    for (const Point3& p : plane.points) out = std::max(out, max_abs(detail::difference3<double>(p, o)));
+  }
+  return (1.0 - 0x1p-52) * out;
+}
+
+// The volume from the double vertices x (every coordinate within tau of the exact vertex's,
+// FrameCoordinates::error), or nullopt when its bound exceeds both tolerances. With u =
+// 2^-52 (any rounding mode), T fan triangles, y~ the rounded differences, L the sides of their
+// bounding box, S the exact six times the volume and S~ the computed sum:
+//   * the vertices: S is a cubic in the vertices, the same for any apex (the fan triangles of
+//     the faces close a surface), and its gradient in vertex v is twice the sum of the area
+//     vectors of the triangles around v, so the linear part of S(x~) - S(x) is at most
+//     2 sqrt 3 tau sum_t 3 A_t = 6 sqrt 3 tau A, A the surface area of the exact polyhedron, at
+//     most its bounding box's, 2 (Lx Ly + Ly Lz + Lz Lx) with each L widened by 2 tau. The
+//     quadratic and cubic parts of each term, det(a + alpha, ...) with |alpha| <= 2 tau per
+//     coordinate, are at most 3 * 6 (2 tau)^2 L + 6 (2 tau)^3 = 72 tau^2 L + 48 tau^3;
+//   * the rounding of a term: three differences, the cross product (a product, a difference)
+//     and the dot product (a product, two sums) make at most 8 roundings on each of the six
+//     products of det, so the term is within 9u m_a m_b m_d of det(y_a, y_b, y_d) with m = |y~|_1
+//     (covering the rounding of m itself); where a product underflows it loses at most
+//     2^-1074, multiplied by at most L in the dot product: (6 L + 3) 2^-1074 per term, taken
+//     twice to cover the underflow of the bound's own products;
+//   * the sum of the terms: within T u sum |term| (recursive summation);
+//   * V = S~ / 6: one more rounding, u |V|.
+// The bound is itself computed in double from non-negative terms, on the rounded y~; the factor
+// 1 + 2^-40 covers those roundings.
+std::optional<double> certified_volume(const HalfspacePolyhedron& h, const Point3& o, const FrameCoordinates& frame) {
+  const std::vector<Vector3T<double>> y = from_apex(frame.x);
+  std::vector<double> m;
+  m.reserve(y.size());
+  Vector3T<double> lo{0, 0, 0}, hi{0, 0, 0};
+  for (const Vector3T<double>& v : y) {
+    m.push_back(std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  double sum = 0.0, magnitude = 0.0, abs_sum = 0.0, terms = 0.0;
+  for_each_fan_triangle(h, [&](std::uint32_t a, std::uint32_t b, std::uint32_t d) {
+    const double t = fan_term(y, a, b, d);
+    sum += t;
+    abs_sum += std::fabs(t);
+    magnitude += m[a] * m[b] * m[d];
+    terms += 1.0;
+  });
+  const double tau = *std::max_element(frame.error.begin(), frame.error.end());
+  const double lx = hi.x - lo.x + 2 * tau, ly = hi.y - lo.y + 2 * tau, lz = hi.z - lo.z + 2 * tau;
+  const double l = std::max({lx, ly, lz});
+  const double area = 2 * (lx * ly + ly * lz + lz * lx);
+  const double vertices = 6 * std::sqrt(3.0) * tau * area + terms * (72 * tau * tau * l + 48 * tau * tau * tau);
+  const double rounding = 9 * 0x1p-52 * magnitude + terms * (6 * l + 3) * 0x1p-1073 + terms * 0x1p-52 * abs_sum;
+  const double volume = sum / 6.0;
+  const double bound = bound_rounding_margin * ((vertices + rounding) / 6.0 + 0x1p-52 * std::fabs(volume));
+  if (bound <= volume_relative_tolerance * (std::fabs(volume) - bound)) return volume;
+  const double r = std::max(frame.extent, plane_point_extent(h, o));
+  if (bound <= volume_tolerance * r * r * r) return volume;
+  return std::nullopt;
 }
 
 ExactRational exact_volume(const HalfspacePolyhedron& h) {
@@ -383,7 +514,7 @@ std::vector<Point3> HalfspacePolyhedron::vertex_coordinates() const {
       out.push_back({round(p.x + ExactRational(o.x)), round(p.y + ExactRational(o.y)), round(p.z + ExactRational(o.z))});
     }
   } else {
-    const auto x = frame_coordinates(*this, o);
+    const auto x = frame_coordinates(*this, o).x;
     for (std::size_t v = 0; v < vertices_.size(); ++v) {
       out.push_back(vertices_[v].input ? vertices_[v].point : Point3{o.x + x[v].x, o.y + x[v].y, o.z + x[v].z});
     }
@@ -396,8 +527,17 @@ double HalfspacePolyhedron::volume() const {
   if (empty()) return 0.0;
   if constexpr (Policy::kind == PolicyKind::exact) {
     return rounded_exact_volume(*this);
+  } else if constexpr (Policy::kind == PolicyKind::float_) {
+    return six_volume(*this, frame_coordinates(*this, frame_origin()).x) / 6.0;
   } else {
-    return six_volume(*this, frame_coordinates(*this, frame_origin())) / 6.0;
+    // Three stages: the certified double vertices; where the volume's bound is too wide, the
+    // loosely certified ones from their exact homogeneous coordinates; the exact volume.
+    const Point3 o = frame_origin();
+    FrameCoordinates frame = frame_coordinates(*this, o);
+    if (const auto volume = certified_volume(*this, o, frame)) return *volume;
+    sharpen(*this, o, frame);
+    if (const auto volume = certified_volume(*this, o, frame)) return *volume;
+    return rounded_exact_volume(*this);
   }
 }
 

@@ -283,3 +283,59 @@ BOOST_AUTO_TEST_CASE(contact3d_vertex_accuracy) {
   BOOST_TEST(implicit >= 300);  // the pairs must exercise implicit vertices (419 of them)
   BOOST_TEST_MESSAGE("contact3d: " << implicit << " implicit vertices checked");
 }
+
+// The kind of pair the fuzzer found (robustness_tests/README.md; its input was lost): a's top
+// corner (-0.5, 0.5, 0) lifted to a subnormal z, so that its top face bends into two planes at a
+// dihedral angle of about that z, beside b pushed 2^-30 m into a, or touching it. Where b's face
+// y = -0.2 crosses the bend, the implicit vertex meets both of a's top planes: det = -2^-1074 and
+// det X = (0.3, 0.7, 0) 2^-1074 exactly (in the frame at (0.5, 0.5, 0)), which Mpzf::to_double
+// rounded to (0, 2^-1074): Filtered put that vertex at (0.5, -0.5, 0) instead of (0.2, -0.2, 0)
+// and the volume at 5.96e-10 m^3 instead of 5.2154e-10 (and NaN in generated face_face pairs
+// where a det rounded to zero). Asserted: every vertex within its certificate of Exact's, as in
+// contact3d_vertex_accuracy, and the volume within the bound of intersection.hpp, 2^-31 |V| or
+// 2^-41 s^3 (s = 2 m, the pair's largest extent), plus half an ulp (Exact's volume is V rounded
+// once); when pushed, V is the box 0.8 x 0.7 x 2^-30 (the wedge under the bend is below 1e-300).
+BOOST_AUTO_TEST_CASE(subnormal_coordinate_beside_a_gap) {
+  const auto lifted_box = [](double z) {
+    return ConvexPolyhedron::make(
+        "a",
+        {{-0.5, -0.5, -1}, {0.5, -0.5, -1}, {0.5, 0.5, -1}, {-0.5, 0.5, -1},
+         {-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, z}},
+        {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  };
+  const double s = 2.0;
+  for (const double z : {0x1p-1074, 0x1p-1062}) {
+    for (const double gap : {-0x1p-30, 0.0}) {
+      const ConvexPolyhedron a = lifted_box(z);
+      const ConvexPolyhedron b = box("b", {-0.3, -0.2, gap}, {0.7, 0.8, 1 + gap});
+      for (const bool swap : {false, true}) {
+        const ConvexPolyhedron& p = swap ? b : a;
+        const ConvexPolyhedron& q = swap ? a : b;
+        BOOST_TEST_INFO("z " << z << " gap " << gap << (swap ? " (b, a)" : " (a, b)"));
+        const double exact = rk::intersection_volume<rk::Exact>(p, q);
+        const double ulp = std::nextafter(exact, INFINITY) - exact;
+        const double tolerance = std::max(0x1p-31 * std::fabs(exact), 0x1p-41 * s * s * s) + ulp / 2;
+        BOOST_TEST(std::fabs(rk::intersection_volume<rk::Filtered>(p, q) - exact) <= tolerance);
+        BOOST_TEST(std::fabs(rk::intersection_volume<rk::Checked>(p, q) - exact) <= tolerance);
+        if (gap < 0) BOOST_TEST(std::fabs(exact - 0.8 * 0.7 * 0x1p-30) <= 1e-9 * exact);
+        const HalfspacePolyhedron h = rk::intersection<rk::Exact>(p, q);
+        const std::vector<Point3> filtered = h.vertex_coordinates<rk::Filtered>();
+        const std::vector<Point3> exact_vertices = h.vertex_coordinates<rk::Exact>();
+        const Point3 o = h.frame_origin();
+        double extent = 0;
+        for (const Point3& x : exact_vertices) {
+          extent = std::max({extent, std::fabs(x.x - o.x), std::fabs(x.y - o.y), std::fabs(x.z - o.z)});
+        }
+        const auto close = [&](double x, double y) {
+          const double u = std::nextafter(std::fabs(y), INFINITY) - std::fabs(y);
+          return std::fabs(x - y) <= 0x1p-42 * extent * 1.001 + 2 * u;
+        };
+        for (std::size_t v = 0; v < exact_vertices.size(); ++v) {
+          BOOST_TEST_INFO("vertex " << v);
+          BOOST_TEST((close(filtered[v].x, exact_vertices[v].x) && close(filtered[v].y, exact_vertices[v].y) &&
+                      close(filtered[v].z, exact_vertices[v].z)));
+        }
+      }
+    }
+  }
+}

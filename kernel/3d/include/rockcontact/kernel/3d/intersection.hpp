@@ -10,8 +10,9 @@
 // and is A ∩ B otherwise. The clipping stops at the first empty result.
 //
 // intersection_volume<P>(a, b) is the volume of that polyhedron (HalfspacePolyhedron::volume:
-// double in a local frame at a's first vertex under Float, Filtered and Checked; the exact
-// rational volume rounded once under Exact), 0 unless the interiors overlap.
+// double in a local frame under Float; under Filtered and Checked within 2^-31 |V| or 2^-41 s^3
+// of the exact volume V, s the largest extent of the pair's bounding box; the exact rational
+// volume rounded once under Exact), 0 unless the interiors overlap.
 
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/kernel/3d/halfspace_polyhedron.hpp"
