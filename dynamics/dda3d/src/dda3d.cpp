@@ -442,7 +442,8 @@ double Dda3d::Impl::largest_displacement(const Eigen::VectorXd& d) const {
   double largest = 0.0;
   for (const Block& b : blocks) {
     if (b.dof == 0) continue;
-    const detail::StepMap map = detail::step_map(b.moments.centroid, d.segment(static_cast<Eigen::Index>(b.offset), b.dof));
+    const auto di = d.segment(static_cast<Eigen::Index>(b.offset), b.dof);
+    const detail::StepMap map = detail::step_map(b.moments.centroid, di);
     for (const ConvexPolyhedron& part : b.parts) {
       for (const Point3& x : part.vertices()) largest = std::max(largest, (vec(detail::apply(map, x)) - vec(x)).norm());
     }

@@ -203,4 +203,24 @@ void UniqueIds::add(const JsonReader& reader, const std::string& array_path, std
   }
 }
 
+Material read_material(const JsonReader& reader, const json& value, const std::string& path) {
+  static constexpr JsonField fields[] = {
+      {"density", true, "the density in kg/m³, a finite number > 0"},
+      {"youngs_modulus", true, "Young's modulus in Pa, a finite number > 0"},
+      {"poisson_ratio", true, "Poisson's ratio, a number in (-1, 0.5)"},
+  };
+  reader.check_object(value, path, "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}", fields);
+  Material m;
+  m.density = reader.positive(value.at("density"), json_child(path, "density"), json_field(fields, "density").expected);
+  m.youngs_modulus = reader.positive(value.at("youngs_modulus"), json_child(path, "youngs_modulus"),
+                                     json_field(fields, "youngs_modulus").expected);
+  const std::string nu_path = json_child(path, "poisson_ratio");
+  const std::string_view nu_expected = json_field(fields, "poisson_ratio").expected;
+  m.poisson_ratio = reader.number(value.at("poisson_ratio"), nu_path, nu_expected);
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
+    reader.fail_expected(nu_path, nu_expected, value.at("poisson_ratio"));
+  }
+  return m;
+}
+
 }  // namespace rockcontact::dynamics

@@ -51,11 +51,6 @@ constexpr JsonField time_fields[] = {
     {"dt", true, "the time step in s, a finite number > 0"},
     {"duration", true, "the simulated time in s, a finite number > 0"},
 };
-constexpr JsonField material_fields[] = {
-    {"density", true, "the density in kg/m³, a finite number > 0"},
-    {"youngs_modulus", true, "Young's modulus in Pa, a finite number > 0"},
-    {"poisson_ratio", true, "Poisson's ratio, a number in (-1, 0.5)"},
-};
 constexpr JsonField contact_fields[] = {
     {"law", true, "\"potential\" (the distance-potential contact of seed 000)"},
     {"kn", true, "the normal penalty kn in Pa, a finite number > 0"},
@@ -455,23 +450,7 @@ class SceneParser {
 
  private:
   Material material(const json& value, const std::string& name) const {
-    const std::string path = json_child("materials", name);
-    reader_.check_object(value, path,
-                         "a material {\"density\", \"youngs_modulus\", \"poisson_ratio\"}",
-                         material_fields);
-    Material m;
-    m.density = reader_.positive(value.at("density"), json_child(path, "density"),
-                                 expected(material_fields, "density"));
-    m.youngs_modulus =
-        reader_.positive(value.at("youngs_modulus"), json_child(path, "youngs_modulus"),
-                         expected(material_fields, "youngs_modulus"));
-    const std::string nu_path = json_child(path, "poisson_ratio");
-    const std::string_view nu_expected = expected(material_fields, "poisson_ratio");
-    m.poisson_ratio = reader_.number(value.at("poisson_ratio"), nu_path, nu_expected);
-    if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
-      reader_.fail_expected(nu_path, nu_expected, value.at("poisson_ratio"));
-    }
-    return m;
+    return read_material(reader_, value, json_child("materials", name));
   }
 
   void h(const json& value, Scene& scene) const {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/io/pairs_io.hpp"
+#include "rockcontact/dynamics/material.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
 
 namespace rockcontact::dynamics {
@@ -114,5 +115,9 @@ class UniqueIds {
  private:
   std::unordered_map<std::string, std::size_t> first_index_;
 };
+
+// The material at `path` ("materials.<name>"): {"density", "youngs_modulus", "poisson_ratio"},
+// the same in 2D and 3D scenes.
+Material read_material(const JsonReader& reader, const nlohmann::json& value, const std::string& path);
 
 }  // namespace rockcontact::dynamics
