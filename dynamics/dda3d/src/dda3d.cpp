@@ -258,11 +258,16 @@ std::vector<Constraint> Dda3d::Impl::detect() {
       const Block &ba = blocks[a], &bb = blocks[b];
       if (ba.dof == 0 && bb.dof == 0) continue;
       if (!ba.box.meets(bb.box, range)) continue;
-      const std::vector<kernel::ContactConstraint> found = kernel::with_policy(law.policy, [&](auto policy) {
+      std::vector<kernel::ContactConstraint> found = kernel::with_policy(law.policy, [&](auto policy) {
         using Policy = decltype(policy);
         return kernel::contact_constraints<Policy>(std::span<const ConvexPolyhedron>(ba.parts),
                                                    std::span<const ConvexPolyhedron>(bb.parts), range);
       });
+      // No step moves a vertex farther than half the range (step 4), so a vertex deeper than
+      // the range has not entered where the kernel's shortest exit says: it crossed an internal
+      // face of a non-convex block, and its exit through the far side of that part would fling
+      // the blocks apart. The neighbouring part's constraint is the one that holds it.
+      std::erase_if(found, [&](const kernel::ContactConstraint& c) { return c.gap < -range; });
       // The area a vertex-face constraint stands for: its face's, shared by the pair's
       // vertex-face constraints on that face.
       std::map<std::tuple<int, std::uint32_t, std::uint32_t>, int> on_face;

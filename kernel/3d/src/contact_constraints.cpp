@@ -17,6 +17,7 @@
 
 #include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
+#include "rockcontact/kernel/3d/tolerances.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 #include "rockcontact/kernel/core/detail/staged_sign.hpp"
 #include "rockcontact/kernel/core/predicate_scope.hpp"
@@ -167,10 +168,28 @@ Topology make_topology(const ConvexPolyhedron& poly, std::uint32_t part) {
   return t;
 }
 
+// Height of v over face f, h_f = n_f . (v - f0) / |n_f|.
+auto face_height(const Topology& t, std::uint32_t f, Point3 v) {
+  const auto& loop = t.face(f);
+  const Point3 f0 = t.p(loop[0]), f1 = t.p(loop[1]), f2 = t.p(loop[2]);
+  return Distance{[=](auto as) {
+                    using T = typename decltype(as)::type;
+                    return dot(cross(sub<T>(f0, f1), sub<T>(f0, f2)), sub<T>(f0, v));
+                  },
+                  [=](auto as) {
+                    using T = typename decltype(as)::type;
+                    const Vec<T> n = cross(sub<T>(f0, f1), sub<T>(f0, f2));
+                    return dot(n, n);
+                  }};
+}
+
 // Marks the faces of each part that lie against a face of another part of the same block: all
-// the other face's vertices on the plane, the other part on the plane's outer side.
+// the other face's vertices within `flush` (metres) of the plane, the other part on the plane's
+// outer side. `flush` is face_planarity_tolerance times the block's size: parts cut from one
+// block meet only to the rounding of their implicit vertices (a few ulps of the coordinates),
+// and an exact test would leave their shared faces as contact planes inside the block.
 template <NumberPolicy Policy>
-void mark_internal_faces(std::vector<Topology>& parts) {
+void mark_internal_faces(std::vector<Topology>& parts, double flush) {
   for (Topology& t : parts) {
     for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
       const auto& loop = t.face(f);
@@ -182,7 +201,9 @@ void mark_internal_faces(std::vector<Topology>& parts) {
         if (!above) continue;
         for (const auto& g : other.poly->faces()) {
           const bool on_plane = std::all_of(g.begin(), g.end(), [&](std::uint32_t k) {
-            return orient3d<Policy>(f0, f1, f2, other.p(k)) == Sign::zero;
+            const auto height = face_height(t, f, other.p(k));
+            const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
+            return within<Policy>(height, flush) && within<Policy>(depth, flush);
           });
           if (on_plane) t.internal[f] = true;
         }
@@ -252,21 +273,6 @@ Sign dot_sign(const Point3& a, const Point3& v, const Point3& b) {
     using T = typename decltype(as)::type;
     return dot(sub<T>(a, v), sub<T>(a, b));
   });
-}
-
-// Height of v over face f, h_f = n_f . (v - f0) / |n_f|.
-auto face_height(const Topology& t, std::uint32_t f, Point3 v) {
-  const auto& loop = t.face(f);
-  const Point3 f0 = t.p(loop[0]), f1 = t.p(loop[1]), f2 = t.p(loop[2]);
-  return Distance{[=](auto as) {
-                    using T = typename decltype(as)::type;
-                    return dot(cross(sub<T>(f0, f1), sub<T>(f0, f2)), sub<T>(f0, v));
-                  },
-                  [=](auto as) {
-                    using T = typename decltype(as)::type;
-                    const Vec<T> n = cross(sub<T>(f0, f1), sub<T>(f0, f2));
-                    return dot(n, n);
-                  }};
 }
 
 struct Located {
@@ -777,8 +783,19 @@ ContactConstraint construct(const Decision& d, const Frame<FT>& frame) {
 template <NumberPolicy Policy>
 std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {
   std::vector<Topology> out;
-  for (std::uint32_t i = 0; i < parts.size(); ++i) out.push_back(make_topology(parts[i], i));
-  mark_internal_faces<Policy>(out);
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::uint32_t i = 0; i < parts.size(); ++i) {
+    out.push_back(make_topology(parts[i], i));
+    for (const Point3& p : parts[i].vertices()) {
+      const double c[3] = {p.x, p.y, p.z};
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], c[k]);
+        hi[k] = std::max(hi[k], c[k]);
+      }
+    }
+  }
+  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  mark_internal_faces<Policy>(out, face_planarity_tolerance * size);
   return out;
 }
 

@@ -397,6 +397,38 @@ BOOST_AUTO_TEST_CASE(internal_face_is_no_exit) {
   });
 }
 
+// Parts that meet only to rounding, as the parts of a cut block do (their implicit vertices
+// rounded each on its own): the base of internal_face_is_no_exit with part 1's seam face
+// tilted by one ulp (its vertices at y = 0 moved to x = 1 - 2^-53), so the two seam faces are
+// not exactly coplanar. They are still internal (within face_planarity_tolerance of the
+// block's size, 2e-9 m here): the cube's corners 0.005 from the seam exit through the top, as
+// before; an exact coplanarity test would let them exit through the seam, normal (1, 0, 0).
+BOOST_AUTO_TEST_CASE(parts_meeting_to_rounding_have_internal_faces) {
+  const ConvexPolyhedron exact = box("part 1", {1, 0, -1}, {2, 1, 0});
+  std::vector<Point3> vertices(exact.vertices().begin(), exact.vertices().end());
+  for (Point3& p : vertices) {
+    if (p.x == 1.0 && p.y == 0.0) p.x = std::nextafter(1.0, 0.0);
+  }
+  const std::vector<ConvexPolyhedron> base = {
+      box("part 0", {0, 0, -1}, {1, 1, 0}), ConvexPolyhedron::make(
+                                                  "part 1", std::move(vertices),
+                                                  std::vector<ConvexPolyhedron::Face>(exact.faces().begin(), exact.faces().end()))};
+  const std::vector<ConvexPolyhedron> cube = {box("cube", {0.5, 0.25, -0.01}, {0.995, 0.75, 0.99})};
+  for_staged([&](auto policy) {
+    using P = decltype(policy);
+    BOOST_TEST_CONTEXT(P::name) {
+      const auto cs = rk::contact_constraints<P>(std::span<const ConvexPolyhedron>(base),
+                                                 std::span<const ConvexPolyhedron>(cube));
+      BOOST_TEST_REQUIRE(cs.size() == 4u);
+      for (const ContactConstraint& c : cs) {
+        BOOST_TEST((c.type == ConstraintType::vertex_face));
+        BOOST_TEST((c.cp_feature == Feature{Feature::Kind::face, box_top, 0}));
+        BOOST_TEST((c.normal == Point3{0, 0, 1}));
+      }
+    }
+  });
+}
+
 // A cube 0.1 above the box's top face: within a tolerance of 0.1 (the same double as the gap,
 // included exactly) its four bottom corners give vertex-face constraints with gap 0.1 (Exact: the
 // double 0.1 exactly; Filtered: within 16 ulps of 4 m, as above); within 0.0999, none. A

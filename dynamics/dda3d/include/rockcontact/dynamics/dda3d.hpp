@@ -7,7 +7,10 @@
 // with u(x) = T(x - c) D (eq. 10-12). A step from t_n to t_n+1 = t_n + h:
 //   1. contacts (§4.1): candidate pairs whose boxes, widened by the detection range, overlap ->
 //      the kernel's generalized constraints of each pair of blocks (two contact points, a plane,
-//      feature ids; kernel/3d/contact_constraints.hpp) closer than the detection range. A
+//      feature ids; kernel/3d/contact_constraints.hpp) closer than the detection range, less
+//      those deeper than it (no step moves a vertex that far: such a vertex crossed an internal
+//      face of a non-convex block and the part it is in would push it out through its far
+//      side; the neighbouring part's constraint holds it). A
 //      constraint that was in the list at the previous step, identified by its pair and its two
 //      features, keeps its mode and tangential spring (§4.2); a new one starts open when its gap
 //      is positive, locked otherwise;

@@ -64,8 +64,9 @@
 // Non-convex blocks (§2.2.2): a block is a union of convex parts, and constraints come from
 // every pair of a part of cp and a part of tp, each feature id naming its part. A face of a
 // part is *internal* when another part of the same block has a face in the same plane with the
-// opposite outward normal (exact: its vertices on the plane, the other part on the face's
-// outer side); an internal face carries no vertex-face contact, is no candidate plane and no
+// opposite outward normal (its vertices within face_planarity_tolerance times the block's size
+// of the plane, decided exactly, since the parts of a cut block meet only to the rounding of
+// their implicit vertices; the other part on the face's outer side, exact); an internal face carries no vertex-face contact, is no candidate plane and no
 // shortest exit of a penetrating vertex (a vertex inside a part whose every face is internal
 // gives no constraint). Parts are assumed to meet along whole faces (a conforming
 // decomposition); a face only partly covered by its neighbour is treated as internal as a whole.
