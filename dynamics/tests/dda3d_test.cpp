@@ -192,6 +192,10 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
   ContactLaw3d law;
   law.kn = -1.0;
   BOOST_TEST(message([&] { Dda3d(cube_on_slab(), law, Dda3dParams{}); }).find("contact.kn") != std::string::npos);
+  // The cube sunk 0.1 m into the slab: deeper than the detection range (2 x 1e-3 x the scene's
+  // 8.8 m), which the penalty cannot resolve.
+  BOOST_TEST(message([&] { Dda3d(cube_on_slab(-0.1), ContactLaw3d{}, Dda3dParams{}); }).find("overlap by 0.1 m") !=
+             std::string::npos);
   auto blocks = cube_on_slab();
   blocks[1].id = "slab";
   BOOST_TEST(message([&] { Dda3d(blocks, ContactLaw3d{}, Dda3dParams{}); }).find("used twice") != std::string::npos);

@@ -142,6 +142,11 @@ struct Dda3d::Impl {
   std::size_t steps = 0;
   std::size_t unknowns = 0;
   std::vector<Constraint> constraints;  // the contact list after the last accepted step
+  // The deepest constraint detect() dropped (deeper than the range), for the check at t = 0.
+  struct Dropped {
+    double depth = 0.0;
+    std::size_t a = 0, b = 0;
+  } deepest;
   Step3dStats last;
   double friction_dissipated = 0.0, numerical_dissipated = 0.0;
   kernel::PredicateCounters predicates;
@@ -209,6 +214,12 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
   states.resize(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) refresh_state(i);
   constraints = detect();
+  if (deepest.depth > 0.0) {
+    throw std::invalid_argument(block_name(blocks[deepest.a].spec.id) + " and " + block_name(blocks[deepest.b].spec.id) +
+                                " overlap by " + number(deepest.depth) +
+                                " m at the start; expected at most the contact detection range " + number(range) +
+                                " m (2 x max_displacement_ratio x the scene's size), within which the penalty acts");
+  }
 }
 
 void Dda3d::Impl::validate_law() const {
@@ -267,6 +278,9 @@ std::vector<Constraint> Dda3d::Impl::detect() {
       // the range has not entered where the kernel's shortest exit says: it crossed an internal
       // face of a non-convex block, and its exit through the far side of that part would fling
       // the blocks apart. The neighbouring part's constraint is the one that holds it.
+      for (const kernel::ContactConstraint& c : found) {
+        if (c.gap < -range && -c.gap > deepest.depth) deepest = {-c.gap, a, b};
+      }
       std::erase_if(found, [&](const kernel::ContactConstraint& c) { return c.gap < -range; });
       // The area a vertex-face constraint stands for: its face's, shared by the pair's
       // vertex-face constraints on that face.

@@ -162,7 +162,9 @@ class Stability3dError : public std::runtime_error {
 
 class Dda3d {
  public:
-  // Validates the blocks, law and params (std::invalid_argument naming the block or field).
+  // Validates the blocks, law and params (std::invalid_argument naming the block or field) and
+  // refuses two blocks that overlap at the start deeper than the detection range (naming both
+  // and the depth): the penalty cannot resolve such an overlap.
   Dda3d(std::vector<Block3dSpec> blocks, ContactLaw3d law, Dda3dParams params);
 
   // One accepted step, cut as often as needed; throws Stability3dError when the step would have
