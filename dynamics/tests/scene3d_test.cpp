@@ -264,7 +264,7 @@ BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
 
 BOOST_AUTO_TEST_CASE(malformed_json_names_the_file) {
   const std::filesystem::path file =
-      std::filesystem::current_path() / "scene3d_test_malformed.json";
+      std::filesystem::temp_directory_path() / "rockcontact_scene3d_test_malformed.json";
   std::ofstream(file) << "{\"dimension\": 3,\n \"time\": {\"dt\": 1e-3,}\n}\n";
   try {
     dyn::read_scene3d_file(file);
@@ -275,6 +275,7 @@ BOOST_AUTO_TEST_CASE(malformed_json_names_the_file) {
     BOOST_TEST(std::string(e.what()).find(file.string() + ": malformed JSON: ") == 0);
     BOOST_TEST(std::string(e.what()).find("line 2") != std::string::npos);
   }
+  std::filesystem::remove(file);
 }
 
 // The 2D reader says where a 3D scene goes; the 3D reader reads it.

@@ -361,10 +361,9 @@ BoundedDD bounded_of(const CGAL::Mpzf& x) {
 // BoundedDD first (about 2^-100 on ordinary planes); where three nearly dependent planes leave
 // it less accurate (or undecided), det X and det are evaluated exactly in CGAL::Mpzf and
 // divided in BoundedDD (about 2^-104). Nullopt when even then the quotient is not certified.
-std::optional<Vector3T<BoundedDD>> bounded_implicit_vertex(const HalfspacePolyhedron& h,
-                                                           const HalfspacePolyhedron::Vertex& v,
-                                                           const std::vector<detail::PlaneCoefficients<BoundedDD>>& planes,
-                                                           const Point3& o, double accuracy) {
+std::optional<Vector3T<BoundedDD>> bounded_implicit_vertex(
+    const HalfspacePolyhedron& h, const HalfspacePolyhedron::Vertex& v,
+    const std::vector<detail::PlaneCoefficients<BoundedDD>>& planes, const Point3& o, double accuracy) {
   const auto divide = [](const auto& x) -> std::optional<Vector3T<BoundedDD>> {
     const auto px = bounded_quotient(x.scaled.x, x.det);
     const auto py = bounded_quotient(x.scaled.y, x.det);
