@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/io/scene3d.hpp"
+#include "rockcontact/testing/box_json.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;
@@ -62,22 +63,10 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& file, const std::
   return rows;
 }
 
-json box(std::array<double, 3> lo, std::array<double, 3> hi) {
-  return {{"vertices",
-           {{lo[0], lo[1], lo[2]},
-            {hi[0], lo[1], lo[2]},
-            {hi[0], hi[1], lo[2]},
-            {lo[0], hi[1], lo[2]},
-            {lo[0], lo[1], hi[2]},
-            {hi[0], lo[1], hi[2]},
-            {hi[0], hi[1], hi[2]},
-            {lo[0], hi[1], hi[2]}}},
-          {"faces",
-           {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
-}
+using rockcontact::testing::box_json;
 
 json block(const std::string& id, std::array<double, 3> lo, std::array<double, 3> hi, bool fixed) {
-  json b = box(lo, hi);
+  json b = box_json(lo, hi);
   b["id"] = id;
   b["material"] = "rock";
   b["rigid"] = true;

@@ -13,6 +13,7 @@
 
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/testing/box_json.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;
@@ -23,25 +24,12 @@ namespace {
 const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
 const std::string examples3d = ROCKCONTACT_EXAMPLES_DIR "/scenes3d";
 
-// The box [lo, hi] as {"vertices", "faces"}, faces counter-clockwise seen from outside.
-json box(std::array<double, 3> lo, std::array<double, 3> hi) {
-  return {{"vertices",
-           {{lo[0], lo[1], lo[2]},
-            {hi[0], lo[1], lo[2]},
-            {hi[0], hi[1], lo[2]},
-            {lo[0], hi[1], lo[2]},
-            {lo[0], lo[1], hi[2]},
-            {hi[0], lo[1], hi[2]},
-            {hi[0], hi[1], hi[2]},
-            {lo[0], hi[1], hi[2]}}},
-          {"faces",
-           {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
-}
+using rockcontact::testing::box_json;
 
 // A block {"id", "group", "material": "rock", "vertices", "faces"} of the box [lo, hi].
 json box_block(const std::string& id, const std::string& group, std::array<double, 3> lo,
                std::array<double, 3> hi) {
-  json b = box(lo, hi);
+  json b = box_json(lo, hi);
   b["id"] = id;
   b["group"] = group;
   b["material"] = "rock";
@@ -69,7 +57,7 @@ json contract_scene() {
                {"group", "ground"},
                {"material", "rock"},
                {"fixed", true},
-               {"parts", {box({2, -2, 0}, {3, 2, 1}), box({2, 2, 0}, {3, 3, 1})}}};
+               {"parts", {box_json({2, -2, 0}, {3, 2, 1}), box_json({2, 2, 0}, {3, 3, 1})}}};
   scene["blocks"] = {slab, cube, wall};
   return scene;
 }
@@ -218,7 +206,7 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
       "blocks[1].velocity", "expected the centroid velocity [vx, vy, vz, wx, wy, wz]");
   expect_error(
       [](json& d) {
-        d["blocks"][1]["parts"] = json::array({box({0, 0, 0}, {1, 1, 1})});
+        d["blocks"][1]["parts"] = json::array({box_json({0, 0, 0}, {1, 1, 1})});
       },
       "blocks[1]", "expected exactly one of \"vertices\" with \"faces\"");
   expect_error([](json& d) { d["blocks"][1].erase("faces"); }, "blocks[1].faces", "missing field");
