@@ -220,6 +220,13 @@ class ProgressBar {
 };
 
 // A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
+// A run the engine stopped: says when and why, and where its outputs are.
+int report_stop(const RunArgs& options, double time, const std::string& error) {
+  std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << time << " s: " << error
+            << "\nrockcontact: the outputs up to the stop are in " << options.out << '\n';
+  return exit_bad_input;
+}
+
 int run_run3d(const RunArgs& options, const nlohmann::json& document) {
   for (const auto& [given, flag] : {std::pair{options.checkpoint_every > 0, "--checkpoint-every"},
                                     std::pair{!options.restart.empty(), "--restart"},
@@ -246,12 +253,7 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
     return exit_bad_input;
   }
   bar.finish();
-  if (report.status != "completed") {
-    std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << report.time
-              << " s: " << report.error << "\nrockcontact: the outputs up to the stop are in "
-              << options.out << '\n';
-    return exit_bad_input;
-  }
+  if (report.status != "completed") return report_stop(options, report.time, report.error);
   const double mean = report.steps == 0 ? 0.0
                                         : static_cast<double>(report.open_close_total) /
                                               static_cast<double>(report.steps);
@@ -302,12 +304,7 @@ int run_run(const RunArgs& options) {
     return exit_bad_input;
   }
   bar.finish();
-  if (report.status != "completed") {
-    std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << report.time
-              << " s: " << report.error << "\nrockcontact: the outputs up to the stop are in "
-              << options.out << '\n';
-    return exit_bad_input;
-  }
+  if (report.status != "completed") return report_stop(options, report.time, report.error);
   std::cout << "scene: " << scene.source << '\n';
   if (!report.restarted_from.empty()) {
     std::cout << "restarted: from " << report.restarted_from.string() << " at step "
