@@ -219,7 +219,6 @@ class ProgressBar {
   bool drawn_ = false;
 };
 
-// A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
 // A run the engine stopped: says when and why, and where its outputs are.
 int report_stop(const RunArgs& options, double time, const std::string& error) {
   std::cerr << "rockcontact: " << options.scene << ": stopped at t = " << time << " s: " << error
@@ -227,6 +226,7 @@ int report_stop(const RunArgs& options, double time, const std::string& error) {
   return exit_bad_input;
 }
 
+// A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
 int run_run3d(const RunArgs& options, const nlohmann::json& document) {
   for (const auto& [given, flag] : {std::pair{options.checkpoint_every > 0, "--checkpoint-every"},
                                     std::pair{!options.restart.empty(), "--restart"},
