@@ -158,7 +158,9 @@ std::vector<CutBlock3> cut_region(std::span<const ConvexPolyhedron> region, std:
   const std::vector<CutPiece3> pieces = cut_by_joint_sets<Policy>(region, sets);
   std::vector<ConvexPolyhedron> solids;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    solids.push_back(rounded(pieces[i].piece, pieces[i].piece.vertex_coordinates<Policy>(),
+    // Exact coordinates, each rounded once to the nearest double (header): a vertex shared by
+    // several pieces gets the same double in each, so the blocks meet exactly where they touch.
+    solids.push_back(rounded(pieces[i].piece, pieces[i].piece.vertex_coordinates<Exact>(),
                              id_prefix + " piece " + std::to_string(i + 1)));
   }
   // Pieces of one cell from different parts that meet face to face are one block.

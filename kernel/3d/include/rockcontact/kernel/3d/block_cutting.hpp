@@ -21,9 +21,13 @@
 //      vertices are exact signs, so no piece is lost or duplicated, whatever the degeneracy: a
 //      plane through a vertex, along an edge or on a face). A piece records its part and its
 //      cell, the k of the slab it lies in for every set.
-// cut_region then rounds each piece's vertices to doubles (vertex_coordinates) into a
-// ConvexPolyhedron; its faces are planar only to rounding, which ConvexPolyhedron accepts
-// within face_planarity_tolerance. Pieces of the same cell from different parts of a
+// cut_region then rounds each piece's vertices to doubles into a ConvexPolyhedron: the exact
+// point rounded once, coordinate by coordinate, to the nearest double (vertex_coordinates<Exact>,
+// whatever the policy of the cut), so a vertex that several pieces share is the same double in
+// each and blocks that touch at the cut meet exactly there (a simulation then sees contacts at
+// exact touch, not gaps and overlaps of a few ulps whose contact planes rounding decides). The
+// faces are planar only to rounding, which ConvexPolyhedron accepts within
+// face_planarity_tolerance. Pieces of the same cell from different parts of a
 // non-convex region that meet face to face (a two-dimensional contact set) form one block,
 // given as its convex parts; the blocks are ordered by their first piece.
 //
