@@ -183,21 +183,50 @@ auto face_height(const Topology& t, std::uint32_t f, Point3 v) {
                   }};
 }
 
+// Whether `p` lies strictly inside the convex loop `g` of `t`, seen from `w`, a point off the
+// loop's plane: on the loop's side of every plane through an edge of the loop and w.
+template <NumberPolicy Policy>
+bool inside_loop(const Topology& t, const ConvexPolyhedron::Face& g, const Point3& w, const Point3& p) {
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const Point3 &a = t.p(g[k]), &b = t.p(g[(k + 1) % g.size()]), &c = t.p(g[(k + 2) % g.size()]);
+    const Sign side = orient3d<Policy>(a, b, w, p);
+    if (side == Sign::zero || side != orient3d<Policy>(a, b, w, c)) return false;
+  }
+  return true;
+}
+
+Point3 loop_centroid(const Topology& t, const ConvexPolyhedron::Face& loop) {
+  Point3 sum{0.0, 0.0, 0.0};
+  for (const std::uint32_t k : loop) sum = {sum.x + t.p(k).x, sum.y + t.p(k).y, sum.z + t.p(k).z};
+  const double n = static_cast<double>(loop.size());
+  return {sum.x / n, sum.y / n, sum.z / n};
+}
+
 // Marks the faces of each part that lie against a face of another part of the same block: all
 // the other face's vertices within `flush` (metres) of the plane, the other part on the plane's
-// outer side. `flush` is face_planarity_tolerance times the block's size: parts cut from one
-// block meet only to the rounding of their implicit vertices (a few ulps of the coordinates),
-// and an exact test would leave their shared faces as contact planes inside the block.
+// outer side, and the two faces overlapping (the centroid of one strictly inside the other, seen
+// from the other part's vertex farthest above the plane), not only touching along an edge in
+// the plane: a wedge's two joint faces meet the base's parts in one plane each, on both sides of
+// the base's concave edge, and the face it rests on is no internal face. `flush` is
+// face_planarity_tolerance times the block's size: parts cut from one block meet only to the
+// rounding of their vertices, and an exact test would leave their shared faces as contact planes
+// inside the block.
 template <NumberPolicy Policy>
 void mark_internal_faces(std::vector<Topology>& parts, double flush) {
   for (Topology& t : parts) {
     for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
       const auto& loop = t.face(f);
       const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+      const Point3 centre = loop_centroid(t, loop);
       for (const Topology& other : parts) {
         if (&other == &t || t.internal[f]) continue;
-        bool above = false;
-        for (const Point3& x : other.poly->vertices()) above |= orient3d<Policy>(f0, f1, f2, x) == Sign::positive;
+        std::optional<Point3> above;
+        double highest = 0.0;
+        for (const Point3& x : other.poly->vertices()) {
+          if (orient3d<Policy>(f0, f1, f2, x) != Sign::positive) continue;
+          const double h = std::abs(dot(cross(sub<double>(f0, f1), sub<double>(f0, f2)), sub<double>(f0, x)));
+          if (!above || h > highest) above = x, highest = h;
+        }
         if (!above) continue;
         for (const auto& g : other.poly->faces()) {
           const bool on_plane = std::all_of(g.begin(), g.end(), [&](std::uint32_t k) {
@@ -205,7 +234,10 @@ void mark_internal_faces(std::vector<Topology>& parts, double flush) {
             const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
             return within<Policy>(height, flush) && within<Policy>(depth, flush);
           });
-          if (on_plane) t.internal[f] = true;
+          if (on_plane && (inside_loop<Policy>(other, g, *above, centre) ||
+                           inside_loop<Policy>(t, loop, *above, loop_centroid(other, g)))) {
+            t.internal[f] = true;
+          }
         }
       }
     }

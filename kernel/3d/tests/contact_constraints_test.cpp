@@ -429,6 +429,33 @@ BOOST_AUTO_TEST_CASE(parts_meeting_to_rounding_have_internal_faces) {
   });
 }
 
+// A step: part 0 the low tread [0, 1] x [0, 1] x [-1, 0], part 1 under the riser [1, 2] x [0, 1]
+// x [-1, 0] and part 2 the riser [1, 2] x [0, 1] x [0, 1] on it. The tread's top (z = 0, outward
+// +z) lies in the plane of the riser's bottom (outward -z) with the riser on its outer side, but
+// the two faces only meet along the edge x = 1: the tread is an outer face, and a cube resting
+// on it gets its four corners as vertex-face constraints with normal +z. (Part 1's top is the
+// riser's bottom exactly: internal, no constraint from part 1 or 2 at z = 0.) This is the face
+// a wedge rests on next to the concave edge of its base.
+BOOST_AUTO_TEST_CASE(coplanar_faces_meeting_at_an_edge_are_not_internal) {
+  const std::vector<ConvexPolyhedron> step = {box("tread", {0, 0, -1}, {1, 1, 0}), box("under", {1, 0, -1}, {2, 1, 0}),
+                                              box("riser", {1, 0, 0}, {2, 1, 1})};
+  const std::vector<ConvexPolyhedron> cube = {box("cube", {0.25, 0.25, -0.01}, {0.75, 0.75, 0.49})};
+  for_staged([&](auto policy) {
+    using P = decltype(policy);
+    BOOST_TEST_CONTEXT(P::name) {
+      const auto cs = rk::contact_constraints<P>(std::span<const ConvexPolyhedron>(step),
+                                                 std::span<const ConvexPolyhedron>(cube), 0.1);
+      BOOST_TEST_REQUIRE(cs.size() == 4u);
+      for (const ContactConstraint& c : cs) {
+        BOOST_TEST((c.type == ConstraintType::vertex_face));
+        BOOST_TEST((c.cp_feature == Feature{Feature::Kind::face, box_top, 0}));
+        BOOST_TEST((c.normal == Point3{0, 0, 1}));
+        BOOST_TEST(std::fabs(c.gap + 0.01) <= 16 * 2 * 0x1p-52);
+      }
+    }
+  });
+}
+
 // A cube 0.1 above the box's top face: within a tolerance of 0.1 (the same double as the gap,
 // included exactly) its four bottom corners give vertex-face constraints with gap 0.1 (Exact: the
 // double 0.1 exactly; Filtered: within 16 ulps of 4 m, as above); within 0.0999, none. A

@@ -66,7 +66,10 @@
 // part is *internal* when another part of the same block has a face in the same plane with the
 // opposite outward normal (its vertices within face_planarity_tolerance times the block's size
 // of the plane, decided exactly, since the parts of a cut block meet only to the rounding of
-// their implicit vertices; the other part on the face's outer side, exact); an internal face carries no vertex-face contact, is no candidate plane and no
+// their implicit vertices; the other part on the face's outer side, exact; and the two faces
+// overlapping, the centroid of one strictly inside the other, so that coplanar faces meeting
+// only along an edge, such as the two faces of a step or the joint face a wedge rests on beside
+// its base's concave edge, stay outer faces); an internal face carries no vertex-face contact, is no candidate plane and no
 // shortest exit of a penetrating vertex (a vertex inside a part whose every face is internal
 // gives no constraint). Parts are assumed to meet along whole faces (a conforming
 // decomposition); a face only partly covered by its neighbour is treated as internal as a whole.
