@@ -513,6 +513,32 @@ BOOST_AUTO_TEST_CASE(open_and_closed) {
   BOOST_TEST(closed.move({0, 0, 0.5e-4}).mode != d::ContactMode::open);  // still penetrating
 }
 
+// A constraint born inside an overlap (offset = its gap at birth, -1 mm): its normal spring acts
+// on d - offset, so at the birth gap it carries no force and stays closed, 0.5 mm deeper it
+// pushes with kn 0.5e-3 = 5e5 N; it opens once back above the birth gap, and an open one with
+// that offset closes only below it. spring_energy is ½ kn (d - offset)² (plus the shear's).
+BOOST_AUTO_TEST_CASE(offset_spring_resists_only_further_penetration) {
+  Single c(-1e-3);
+  c.state.mode = d::ContactMode::locked;
+  c.state.offset = -1e-3;
+  d::ContactUpdate3d u = c.move({0, 0, 0});
+  BOOST_TEST(u.mode != d::ContactMode::open);
+  BOOST_TEST(u.normal_force == 0.0);
+  u = c.move({0, 0, -0.5e-3});
+  BOOST_TEST(u.mode != d::ContactMode::open);
+  BOOST_TEST(close(u.normal_force, 5e5));
+  BOOST_TEST(std::fabs(d::spring_energy(c.law, u.mode, c.state.offset, u.gap, Vector3d::Zero()) - 0.5 * 1e9 * 0.25e-6) <=
+             1e-9 * 125.0);
+  BOOST_TEST(c.move({0, 0, 0.2e-3}).mode == d::ContactMode::open);
+  c.state.mode = d::ContactMode::open;
+  BOOST_TEST(c.move({0, 0, -0.1e-3}).mode == d::ContactMode::locked);
+  BOOST_TEST(c.move({0, 0, 0.1e-3}).mode == d::ContactMode::open);
+  // The terms: the spring's load is kn (d0 - offset) = 0 here, so no load from the normal spring.
+  c.state.mode = d::ContactMode::locked;
+  const Terms t = terms_of(c.kin, c.state, c.law);
+  BOOST_TEST(t.f.norm() <= 1e-9);
+}
+
 // Locked <-> sliding: fn = kn 1e-4 = 1e5 N, tan φ fn = 57 735 N, cap = tan φ fn / kt = 0.577 mm.
 // A stretch under the cap stays locked with kt times it; over the cap it slides with the
 // stretch held at the cap and the force tan φ fn (+ c A with a cohesion). A sliding contact

@@ -159,6 +159,21 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
   BOOST_TEST(scene.blocks[1].velocity == (std::array<double, 6>{}));
   BOOST_TEST(scene.every == 100u);
   BOOST_TEST(scene.track == std::vector<std::string>{"cube"});  // the only block not fixed
+  BOOST_TEST(scene.params.initial_equilibrium);
+  BOOST_TEST(!scene.params.static_analysis);
+}
+
+BOOST_AUTO_TEST_CASE(analysis_and_initial_equilibrium) {
+  json document = contract_scene();
+  document["analysis"] = "static";
+  document["initial_equilibrium"] = false;
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, "static.json");
+  BOOST_TEST(scene.params.static_analysis);
+  BOOST_TEST(!scene.params.initial_equilibrium);
+  document["analysis"] = "dynamic";
+  BOOST_TEST(!dyn::parse_scene3d(document, "dynamic.json").params.static_analysis);
+  expect_error([](json& d) { d["analysis"] = "quasi"; }, "analysis", "one of \"dynamic\", \"static\"");
+  expect_error([](json& d) { d["initial_equilibrium"] = 1; }, "initial_equilibrium", "true or false");
 }
 
 // Each malformed field is named by its JSON path, with what was expected.

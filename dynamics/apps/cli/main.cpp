@@ -251,6 +251,9 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
   } catch (const std::invalid_argument& e) {  // a parameter or block the engine refuses
     std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
     return exit_bad_input;
+  } catch (const dyn::Stability3dError& e) {  // an initial equilibrium the blocks do not have
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
   }
   bar.finish();
   if (report.status != "completed") return report_stop(options, report.time, report.error);

@@ -120,7 +120,7 @@ void add_contact_terms(const ContactKinematics3d& kin, const ContactState3d& sta
   assert(out.k_ii.rows() == kin.t_i.cols() && out.k_jj.rows() == kin.t_j.cols());
   if (state.mode == ContactMode::open) return;
   const Vector3d& n = kin.normal;
-  add_spring(kin, n, kin.gap, law.kn, out);  // eq. 22-24
+  add_spring(kin, n, kin.gap - state.offset, law.kn, out);  // eq. 22-24
   if (state.mode == ContactMode::locked) {   // eq. 25-29, P = t1 t1ᵀ + t2 t2ᵀ
     const auto [t1, t2] = tangent_basis(n);
     add_spring(kin, t1, t1.dot(state.shear), law.kt, out);
@@ -144,12 +144,12 @@ ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactSt
   out.gap = kin.gap + n.dot(relative);  // eq. 21
   const bool was_closed = state.mode != ContactMode::open;
   const bool closed =
-      was_closed ? law.kn * out.gap <= law.tensile_strength * kin.area : out.gap < 0.0;
+      was_closed ? law.kn * (out.gap - state.offset) <= law.tensile_strength * kin.area : out.gap < state.offset;
   if (!closed) {
     out.sliding_direction = unit_or(tangential(relative, n), state.sliding_direction);
     return out;
   }
-  out.normal_force = -law.kn * out.gap;
+  out.normal_force = -law.kn * (out.gap - state.offset);
   if (!was_closed) {
     out.mode = ContactMode::locked;
     out.shear = tangential(state.shear, n);
@@ -171,6 +171,14 @@ void next_iteration(ContactState3d& state, const ContactUpdate3d& update) {
 void commit_step(ContactState3d& state, const ContactUpdate3d& update) {
   next_iteration(state, update);
   state.shear = update.shear;
+  if (update.mode == ContactMode::open) state.offset = 0.0;
+}
+
+double spring_energy(const ContactLaw3d& law, ContactMode mode, double offset, double gap,
+                     const Eigen::Vector3d& shear) {
+  if (mode == ContactMode::open) return 0.0;
+  const double stretch = gap - offset;
+  return 0.5 * law.kn * stretch * stretch + 0.5 * law.kt * shear.squaredNorm();
 }
 
 std::optional<RevisedContact3d> revise_vertex_face(const kernel::Point3& point_cp,

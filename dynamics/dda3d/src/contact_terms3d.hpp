@@ -11,12 +11,13 @@
 //   Δr = T_j D_j - T_i D_i                                  relative displacement (eq. 14-15)
 //   d1 = d0 + n . Δr                                        gap at the end of the step (eq. 21)
 // and the total potential energy of eq. 13 gains, by mode:
-//   closed (locked or sliding)  ½ kn d1²                                           (eq. 22-24)
+//   closed (locked or sliding)  ½ kn (d1 - offset)²                                (eq. 22-24)
 //   locked                      ½ kt |P (Δr + r_acc)|²,  P = I - n nᵀ               (eq. 25-29)
 //   sliding                     f v . Δr,  f = tan φ fn* + c A,  v = unit(P v*)     (eq. 30-32)
 // with r_acc the spring's accumulated tangential stretch (of p_j relative to p_i) carried from the
 // previous steps, fn* the normal force of the previous iteration (-kn d*, compression > 0; in
-// the first iteration of a step that of the last step, -kn d0 for points that follow the blocks)
+// the first iteration of a step that of the last step, -kn d0 for points that follow the blocks;
+// offset the state's, normally 0)
 // and v* the assumed sliding direction of p_j relative to p_i (§2.3). A spring along a unit
 // direction e with offset s0 (d0 for the normal, t . r_acc for each vector t of a tangent
 // basis) has the energy ½ k (s0 + eᵀ Δr)², so with g_i = T_iᵀ e and g_j = T_jᵀ e it adds
@@ -26,9 +27,9 @@
 //
 // The mode after a solve (Table 2, §2.4 method 3; the table itself was lost in the text of the
 // seed and is rebuilt from the prose and the open-close check of Shi's DDA):
-//   open   -> closed (locked) when d1 < 0, the spring then enters the next iteration;
-//   closed -> open when the normal spring's tension kn d1 exceeds the tensile strength σt A
-//             (with σt = 0: when d1 > 0);
+//   open   -> closed (locked) when d1 < offset, the spring then enters the next iteration;
+//   closed -> open when the normal spring's tension kn (d1 - offset) exceeds the tensile
+//             strength σt A (with σt = 0: when d1 > offset);
 //   closed -> locked or sliding by the Mohr-Coulomb test on the tangential spring: the trial
 //             stretch s = P (r_acc + Δr) is kept when kt |s| <= tan φ max(fn, 0) + c A, and is
 //             otherwise stretched only to that cap along s (sliding), never reset.
@@ -107,6 +108,11 @@ struct ContactState3d {
   ContactMode mode = ContactMode::open;
   // r_acc: the tangential spring's stretch, p_j relative to p_i, metres, at the start of the step.
   Eigen::Vector3d shear = Eigen::Vector3d::Zero();
+  // The gap at which the normal spring is unloaded, metres, <= 0: 0, except for a constraint the
+  // engine found already penetrating inside an overlap other constraints resist (born loaded it
+  // would push the overlap out a second time); the spring then acts on d - offset. Dropped
+  // (zero) when the contact opens.
+  double offset = 0.0;
   // fn*: the normal force of the previous iteration (or step), N, compression > 0.
   double normal_force = 0.0;
   // v*: the assumed sliding direction of p_j relative to p_i, unit, or zero when unknown (a
@@ -147,6 +153,11 @@ ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactSt
                                  const ContactLaw3d& law,
                                  const Eigen::Ref<const Eigen::VectorXd>& d_i,
                                  const Eigen::Ref<const Eigen::VectorXd>& d_j);
+
+// The energy of the springs of a closed contact at gap `gap` with tangential stretch `shear`,
+// ½ kn (gap - offset)² + ½ kt |shear|², J; 0 for an open one.
+double spring_energy(const ContactLaw3d& law, ContactMode mode, double offset, double gap,
+                     const Eigen::Vector3d& shear);
 
 // Between iterations of one step: the new mode, fn* and v*; r_acc stays the step's.
 void next_iteration(ContactState3d& state, const ContactUpdate3d& update);

@@ -28,6 +28,13 @@ using kernel::Point3;
 
 // Growth of the step after an accepted one, back towards Dda3dParams::dt.
 constexpr double step_growth = 1.5;
+// Initial equilibrium (header): the inertia term's share left in the static solve, and the gap
+// (of the scene's size) up to which blocks count as resting on each other at the start.
+constexpr double settle_regularization = 1.0e-9;
+constexpr double resting_gap = 1.0e-6;
+// Contact transfer (detect): the largest angle between the normals of a vanished constraint and
+// the new one that continues it, radians (15 degrees).
+constexpr double transfer_angle = std::numbers::pi / 12.0;
 
 std::string number(double x) {
   char text[32];
@@ -61,14 +68,84 @@ Box box_of(const std::vector<ConvexPolyhedron>& parts) {
   return b;
 }
 
-// Area of a planar polygon given as vertex ids of `part` (Newell's formula).
-double face_area(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& loop) {
+// Twice the vector area of a planar polygon given as vertex ids of `part` (Newell's formula): it
+// points outward, the loop being counter-clockwise seen from outside.
+Eigen::Vector3d doubled_vector_area(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& loop) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   const Eigen::Vector3d o = vec(part[loop[0]]);
   for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
     sum += (vec(part[loop[k]]) - o).cross(vec(part[loop[k + 1]]) - o);
   }
-  return 0.5 * sum.norm();
+  return sum;
+}
+
+double face_area(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& loop) {
+  return 0.5 * doubled_vector_area(part, loop).norm();
+}
+
+// What the contact list holds of a closed constraint for the next step (§4.2): a vertex of one
+// block on a face of the other (`other` is that face), or a vertex of cp pressed on a vertex of
+// tp along a plane that is no face (an edge pair's plane or the line of the points; `other` is
+// tp's vertex, the normal turns with tp).
+struct Hold {
+  kernel::BlockRole vertex_side = kernel::BlockRole::cp;  // the vertex's block
+  kernel::Feature vertex;
+  kernel::Feature other;  // on the other block
+  auto tied() const {
+    return std::tuple(vertex_side, vertex.part, vertex.index, other.kind, other.part, other.index);
+  }
+  friend bool operator<(const Hold& x, const Hold& y) { return x.tied() < y.tied(); }
+};
+
+// The vertex and face of a constraint whose plane `source` is a face of one block and whose
+// point on the other block is a vertex; nullopt otherwise.
+std::optional<Hold> vertex_on_face(const kernel::ContactConstraint& c, const kernel::PlaneSource& source) {
+  using Kind = kernel::PlaneSource::Kind;
+  if (source.kind != Kind::cp_face && source.kind != Kind::tp_face) return std::nullopt;
+  const bool face_on_cp = source.kind == Kind::cp_face;
+  const kernel::Feature& vertex = face_on_cp ? c.tp_feature : c.cp_feature;
+  if (vertex.kind != kernel::Feature::Kind::vertex) return std::nullopt;
+  const kernel::Feature& face_side = face_on_cp ? c.cp_feature : c.tp_feature;
+  return Hold{face_on_cp ? kernel::BlockRole::tp : kernel::BlockRole::cp, vertex,
+              {kernel::Feature::Kind::face, face_on_cp ? source.cp_index : source.tp_index, face_side.part}};
+}
+
+// The hold of a constraint itself: its vertex on its face, or its two vertices; nullopt for an
+// edge-edge or a vertex-edge constraint whose plane is no face.
+std::optional<Hold> own_hold(const kernel::ContactConstraint& c) {
+  if (auto h = vertex_on_face(c, c.plane)) return h;
+  if (c.type != kernel::ConstraintType::vertex_vertex) return std::nullopt;
+  return Hold{kernel::BlockRole::cp, c.cp_feature, c.tp_feature};
+}
+
+// What a closed constraint holds for the next step: its own hold and, for a vertex-vertex
+// constraint whose plane is a face, the other vertex on each candidate face of the other block.
+// Two vertices that coincide (blocks cut from one region) are then both held, each on the faces
+// of the other block it rests on: the kernel reports such a contact once, from one of the
+// vertices, and the other would have no contact of its own once they part.
+std::vector<Hold> holds_of(const kernel::ContactConstraint& c) {
+  std::vector<Hold> out;
+  const std::optional<Hold> own = own_hold(c);
+  if (!own) return out;
+  out.push_back(*own);
+  if (c.type != kernel::ConstraintType::vertex_vertex || own->other.kind != kernel::Feature::Kind::face) return out;
+  for (const kernel::CandidatePlane& candidate : c.candidates) {
+    const std::optional<Hold> h = vertex_on_face(c, candidate.source);
+    if (h && h->vertex_side != own->vertex_side) out.push_back(*h);
+  }
+  return out;
+}
+
+// A vertex of one block of a pair: its block's role, its part and its index there.
+using ContactVertex = std::pair<kernel::BlockRole, std::pair<std::uint32_t, std::uint32_t>>;
+
+// The vertices among a constraint's two features.
+std::vector<ContactVertex> vertices_of(const kernel::ContactConstraint& c) {
+  std::vector<ContactVertex> out;
+  for (const auto& [side, f] : {std::pair{kernel::BlockRole::cp, c.cp_feature}, std::pair{kernel::BlockRole::tp, c.tp_feature}}) {
+    if (f.kind == kernel::Feature::Kind::vertex) out.push_back({side, {f.part, f.index}});
+  }
+  return out;
 }
 
 struct Block {
@@ -87,6 +164,115 @@ struct Block {
 
   Eigen::MatrixXd mass_matrix() const { return detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
+
+// The constraint of a hold with the blocks where they are now; nullopt once the vertex has left
+// (the kernel then decides its contacts afresh).
+//   Vertex on face: the face's current plane, the vertex's distance from it as the gap and its
+//   foot on the plane as the face's point; left when farther than `range` from the plane or
+//   outside the face by more than `range`.
+//   Two vertices: `normal` (unit, from cp towards tp), `from`'s plane source; left when the
+//   vertices are farther apart than `range`.
+std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Block& tp, const Hold& h,
+                                                      const kernel::ContactConstraint& from,
+                                                      const Eigen::Vector3d& normal, double range) {
+  const bool vertex_on_cp = h.vertex_side == kernel::BlockRole::cp;
+  const Block& vertex_block = vertex_on_cp ? cp : tp;
+  const Block& other_block = vertex_on_cp ? tp : cp;
+  const Eigen::Vector3d v = vec(vertex_block.parts[h.vertex.part][h.vertex.index]);
+  kernel::ContactConstraint c;
+  c.entering = h.vertex_side;
+  (vertex_on_cp ? c.cp_feature : c.tp_feature) = h.vertex;
+  (vertex_on_cp ? c.tp_feature : c.cp_feature) = h.other;
+  Eigen::Vector3d n = normal;
+  if (h.other.kind == kernel::Feature::Kind::vertex) {
+    const Eigen::Vector3d w = vec(other_block.parts[h.other.part][h.other.index]);
+    if ((w - v).norm() > range) return std::nullopt;
+    c.type = kernel::ConstraintType::vertex_vertex;
+    c.entering = from.entering;
+    c.plane = from.plane;
+    c.point_cp = point(v);
+    c.point_tp = point(w);
+    c.gap = (w - v).dot(n);
+  } else {
+    const ConvexPolyhedron& part = other_block.parts[h.other.part];
+    const ConvexPolyhedron::Face& loop = part.faces()[h.other.index];
+    const Eigen::Vector3d outward = doubled_vector_area(part, loop).normalized();
+    const double distance = (v - vec(part[loop[0]])).dot(outward);
+    if (std::abs(distance) > range) return std::nullopt;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Eigen::Vector3d a = vec(part[loop[k]]), b = vec(part[loop[(k + 1) % loop.size()]]);
+      // n x (b - a) points into the face from its edge (the loop is counter-clockwise about n).
+      if (outward.cross(b - a).normalized().dot(v - a) < -range) return std::nullopt;
+    }
+    const Eigen::Vector3d foot = v - distance * outward;
+    c.type = kernel::ConstraintType::vertex_face;
+    c.point_cp = point(vertex_on_cp ? v : foot);
+    c.point_tp = point(vertex_on_cp ? foot : v);
+    n = vertex_on_cp ? Eigen::Vector3d(-outward) : outward;
+    c.plane = vertex_on_cp ? kernel::PlaneSource{kernel::PlaneSource::Kind::tp_face, 0, h.other.index}
+                           : kernel::PlaneSource{kernel::PlaneSource::Kind::cp_face, h.other.index, 0};
+    c.gap = distance;
+  }
+  c.normal = point(n);
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  c.tangent1 = point(t1);
+  c.tangent2 = point(n.cross(t1));
+  return c;
+}
+
+// Edges closer to parallel than this (the sine of their angle) make no edge-edge constraint in
+// the engine: the crossing of two nearly collinear edges (a block's edge sliding along the edge it
+// rests in) moves along them by the lateral motion over this sine, so it comes and goes from step
+// to step and each time starts a new spring; the vertex contacts at the ends of their overlap
+// carry the contact.
+constexpr double parallel_edges = 1.0e-3;
+
+bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
+  const auto direction = [](const Block& b, const kernel::Feature& f) {
+    const ConvexPolyhedron& part = b.parts[f.part];
+    const auto [i, j] = part.edges()[f.index];
+    return Eigen::Vector3d(vec(part[j]) - vec(part[i])).normalized();
+  };
+  return direction(cp, c.cp_feature).cross(direction(tp, c.tp_feature)).norm() < parallel_edges;
+}
+
+// A closed edge-edge constraint with the blocks where they are now: the closest points of the two
+// edges' lines, the normal their cross product turned to the side of `from`'s; nullopt when the
+// edges have turned nearly parallel, their lines are farther apart than `range`, or a closest
+// point is off its edge by more than `range` (the crossing has left the edges). Held so, a
+// crossing near the end of an edge does not come and go with the rounding of its parameters.
+std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Block& tp,
+                                                       const kernel::ContactConstraint& from, double range) {
+  const ConvexPolyhedron& x = cp.parts[from.cp_feature.part];
+  const ConvexPolyhedron& y = tp.parts[from.tp_feature.part];
+  const auto [i, j] = x.edges()[from.cp_feature.index];
+  const auto [k, l] = y.edges()[from.tp_feature.index];
+  const Eigen::Vector3d p = vec(x[i]), u = vec(x[j]) - p, q = vec(y[k]), w = vec(y[l]) - q;
+  Eigen::Vector3d n = u.cross(w);
+  if (n.norm() < parallel_edges * u.norm() * w.norm()) return std::nullopt;
+  n.normalize();
+  if (n.dot(vec(from.normal)) < 0.0) n = -n;
+  // Closest points p + s u, q + t w: (p + s u - q - t w) orthogonal to u and w.
+  const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w), du = (p - q).dot(u), dw = (p - q).dot(w);
+  const double det = uu * ww - uw * uw;
+  const double s = (uw * dw - ww * du) / det, t = (uu * dw - uw * du) / det;
+  const auto on_edge = [&](double parameter, double length) {
+    return parameter * length >= -range && (parameter - 1.0) * length <= range;
+  };
+  if (!on_edge(s, std::sqrt(uu)) || !on_edge(t, std::sqrt(ww))) return std::nullopt;
+  const Eigen::Vector3d on_cp = p + s * u, on_tp = q + t * w;
+  const double gap = (on_tp - on_cp).dot(n);
+  if (std::abs(gap) > range) return std::nullopt;
+  kernel::ContactConstraint c = from;
+  c.point_cp = point(on_cp);
+  c.point_tp = point(on_tp);
+  c.normal = point(n);
+  c.gap = gap;
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  c.tangent1 = point(t1);
+  c.tangent2 = point(n.cross(t1));
+  return c;
+}
 
 // What identifies a constraint from step to step (§4.2): its pair and its two features.
 using ConstraintKey = std::tuple<std::size_t, std::size_t, int, int, std::uint32_t, std::uint32_t, int,
@@ -113,6 +299,7 @@ struct Constraint {
   detail::ContactUpdate3d update;   // of the last solve
   double slip_work = 0.0;           // friction work of the last solve, J
   double start_energy = 0.0;        // held by its springs at the start of the step, J
+  Eigen::Vector3d normal_in_tp = Eigen::Vector3d::Zero();  // the normal in tp's own axes (its rotation undone)
 };
 
 ContactMode3d public_mode(detail::ContactMode mode) {
@@ -154,12 +341,20 @@ struct Dda3d::Impl {
   Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3dParams p);
   void validate_law() const;
   detail::ContactLaw3d pair_law(const Block& a, const Block& b) const;
-  std::vector<Constraint> detect();
+  std::vector<Constraint> detect(bool at_start = false);
+  void hold_contacts(std::size_t a, std::size_t b, std::vector<kernel::ContactConstraint>& found) const;
+  std::vector<const Constraint*> vanished_contacts(std::size_t a, std::size_t b,
+                                                   const std::vector<kernel::ContactConstraint>& found) const;
+  const Constraint* transferred_from(const std::vector<const Constraint*>& vanished,
+                                     const kernel::ContactConstraint& c) const;
   bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
                double& numerical) const;
-  void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical) const;
+  void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
+             const std::vector<char>* settling = nullptr) const;
+  void settle();
   double largest_displacement(const Eigen::VectorXd& d) const;
   void accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations, double numerical);
+  void move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& di);
   void refresh_state(std::size_t i);
 };
 
@@ -213,13 +408,101 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
   h = params.dt;
   states.resize(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) refresh_state(i);
-  constraints = detect();
+  constraints = detect(true);
   if (deepest.depth > 0.0) {
     throw std::invalid_argument(block_name(blocks[deepest.a].spec.id) + " and " + block_name(blocks[deepest.b].spec.id) +
                                 " overlap by " + number(deepest.depth) +
                                 " m at the start; expected at most the contact detection range " + number(range) +
                                 " m (2 x max_displacement_ratio x the scene's size), within which the penalty acts");
   }
+  if (params.initial_equilibrium) settle();
+}
+
+// The initial equilibrium (header): the blocks resting on a fixed block at the start, directly or
+// through other resting blocks, solved for static equilibrium with every closed constraint
+// locked, the open-close iteration deciding which close; then moved there, their stresses and
+// springs loaded, their velocities kept. Time and the energies' references start after it.
+void Dda3d::Impl::settle() {
+  const double resting = resting_gap * size;
+  std::vector<char> settling(blocks.size(), 0);
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (blocks[i].dof == 0) queue.push_back(i);
+  }
+  while (!queue.empty()) {
+    const std::size_t i = queue.back();
+    queue.pop_back();
+    for (const Constraint& k : constraints) {
+      if (k.kinematics.gap > resting || (k.a != i && k.b != i)) continue;
+      const std::size_t j = k.a == i ? k.b : k.a;
+      if (blocks[j].dof == 0 || settling[j]) continue;
+      settling[j] = 1;
+      queue.push_back(j);
+    }
+  }
+  if (std::none_of(settling.begin(), settling.end(), [](char c) { return c != 0; })) return;
+  std::vector<Constraint> list = constraints;
+  for (Constraint& k : list) {
+    k.state.mode = k.kinematics.gap <= resting ? detail::ContactMode::locked : detail::ContactMode::open;
+  }
+  Eigen::VectorXd d;
+  double unused = 0.0;
+  std::size_t iteration = 1;
+  for (;; ++iteration) {
+    solve(list, d, unused, &settling);
+    if (!d.allFinite()) throw Stability3dError("the initial equilibrium's static solve has no finite solution");
+    bool changed = false;
+    for (Constraint& k : list) {
+      const Block &ba = blocks[k.a], &bb = blocks[k.b];
+      const auto di = ba.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(ba.offset), ba.dof))
+                                 : Eigen::VectorXd();
+      const auto dj = bb.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(bb.offset), bb.dof))
+                                 : Eigen::VectorXd();
+      k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
+      if (k.update.mode == detail::ContactMode::sliding) {
+        // Locked whatever the load: the spring keeps the whole trial stretch.
+        const Eigen::Vector3d& n = k.kinematics.normal;
+        const Eigen::Vector3d relative = k.kinematics.t_j * dj - k.kinematics.t_i * di;
+        const Eigen::Vector3d trial = k.state.shear + relative;
+        k.update.mode = detail::ContactMode::locked;
+        k.update.shear = trial - trial.dot(n) * n;
+        k.update.tangential_force = -k.law.kt * k.update.shear;
+      }
+      changed = changed || (k.state.mode == detail::ContactMode::open) != (k.update.mode == detail::ContactMode::open);
+    }
+    if (!changed) break;
+    if (iteration == params.max_open_close) {
+      throw Stability3dError("the initial equilibrium does not settle: the open-close iteration of its static solve "
+                             "does not converge in " + std::to_string(params.max_open_close) +
+                             " iterations, so the blocks resting on each other at the start have no static "
+                             "equilibrium even with their contacts locked against sliding (a scene meant to "
+                             "collapse); set \"initial_equilibrium\": false to start from the given state");
+    }
+    for (Constraint& k : list) detail::next_iteration(k.state, k.update);
+  }
+  const double moved = largest_displacement(d);
+  if (moved > params.max_displacement_ratio * size) {
+    std::size_t worst = 0;
+    double largest = -1.0;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      if (!settling[i]) continue;
+      const double norm = d.segment(static_cast<Eigen::Index>(blocks[i].offset), 3).norm();
+      if (norm > largest) largest = norm, worst = i;
+    }
+    throw Stability3dError("the initial equilibrium would move " + block_name(blocks[worst].spec.id) + " by " +
+                           number(largest) + " m, more than max_displacement_ratio x size = " +
+                           number(params.max_displacement_ratio * size) +
+                           " m: the blocks it rests on at the start do not hold it (set \"initial_equilibrium\": "
+                           "false to start without the pre-solve)");
+  }
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!settling[i]) continue;
+    move(i, d.segment(static_cast<Eigen::Index>(blocks[i].offset), blocks[i].dof));
+    blocks[i].reference_centroid = blocks[i].moments.centroid;
+  }
+  for (Constraint& k : list) detail::commit_step(k.state, k.update);
+  constraints = std::move(list);
+  constraints = detect();
 }
 
 void Dda3d::Impl::validate_law() const {
@@ -257,9 +540,97 @@ detail::ContactLaw3d Dda3d::Impl::pair_law(const Block& a, const Block& b) const
   return out;
 }
 
+// Step 1 of the header, the contact list's memory (§4.2): a closed constraint keeps its plane
+// while its features stay in contact, whatever the kernel's shortest exit says now.
+//   * A vertex on a face stays on that face while it is over it (held_contact). A vertex that the
+//     load pressed a little into a non-convex block next to its concave edge (a wedge on its two
+//     joints) may be nearer to a face it never came through (the top of the part under the
+//     edge) than to the faces it rests on; the shortest exit would push it out there and the
+//     block would jump.
+//   * Two vertices pressed together keep their normal, turning with tp.
+//   * Two crossing edges stay crossed while the crossing is on both (held_crossing): near an
+//     edge's end it would otherwise come and go with the rounding of its parameters, each time
+//     a new spring at zero stretch.
+// The held constraints replace the kernel's with the same features (or vertex and face), and
+// for a held vertex those that penetrate; and a vertex that was closed on the other block in any
+// way takes no new penetrating constraint (a vertex enters a face only from outside, where the
+// kernel sees it first with a positive gap). The kernel's open constraints of such a vertex stay:
+// it may come to a second face.
+void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b,
+                                         std::vector<kernel::ContactConstraint>& found) const {
+  std::set<ContactVertex> supported, held_vertices;
+  std::map<Hold, kernel::ContactConstraint> held;
+  std::vector<kernel::ContactConstraint> crossings;
+  std::set<ConstraintKey> continuing, crossing_keys;
+  for (const Constraint& k : constraints) {
+    if (k.a != a || k.b != b || k.state.mode == detail::ContactMode::open) continue;
+    continuing.insert(key_of(a, b, k.geometry));
+    for (const ContactVertex& v : vertices_of(k.geometry)) supported.insert(v);
+    if (k.geometry.type == kernel::ConstraintType::edge_edge) {
+      if (auto c = held_crossing(blocks[a], blocks[b], k.geometry, range)) crossings.push_back(std::move(*c));
+      continue;
+    }
+    const Eigen::Vector3d normal = blocks[b].rotation * k.normal_in_tp;
+    for (const Hold& hold : holds_of(k.geometry)) {
+      if (held.contains(hold)) continue;
+      if (auto c = held_contact(blocks[a], blocks[b], hold, k.geometry, normal, range)) held.emplace(hold, std::move(*c));
+    }
+  }
+  for (const auto& entry : held) {
+    for (const ContactVertex& v : vertices_of(entry.second)) held_vertices.insert(v);
+  }
+  for (const kernel::ContactConstraint& c : crossings) crossing_keys.insert(key_of(a, b, c));
+  std::erase_if(found, [&](const kernel::ContactConstraint& c) {
+    if (crossing_keys.contains(key_of(a, b, c))) return true;
+    if (const std::optional<Hold> hold = own_hold(c); hold && held.contains(*hold)) return true;
+    if (c.gap > 0.0) return false;
+    const bool is_new = !continuing.contains(key_of(a, b, c));
+    for (const ContactVertex& v : vertices_of(c)) {
+      if (held_vertices.contains(v) || (is_new && supported.contains(v))) return true;
+    }
+    return false;
+  });
+  for (auto& entry : held) found.push_back(std::move(entry.second));
+  for (kernel::ContactConstraint& c : crossings) found.push_back(std::move(c));
+}
+
+// Contact transfer: the closed constraints of the pair in the last list whose key is no longer
+// found (their features changed: a crossing moved past an edge's end, a vertex slid from a face
+// onto an edge).
+std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::size_t a, std::size_t b,
+                                                             const std::vector<kernel::ContactConstraint>& found) const {
+  std::set<ConstraintKey> keys;
+  for (const kernel::ContactConstraint& c : found) keys.insert(key_of(a, b, c));
+  std::vector<const Constraint*> out;
+  for (const Constraint& k : constraints) {
+    if (k.a == a && k.b == b && k.state.mode != detail::ContactMode::open && !keys.contains(key_of(a, b, k.geometry))) {
+      out.push_back(&k);
+    }
+  }
+  return out;
+}
+
+// The vanished constraint a new closed one continues: the nearest whose contact point on tp was
+// within a step's largest motion (max_displacement_ratio x size) of the new one's and whose
+// normal is within transfer_angle of it; nullptr when none. The new constraint takes its mode and
+// springs, so a contact whose features change keeps its tangential stretch instead of starting a
+// new spring at zero (Shi's contact transfer), which would let a block creep by the spring's
+// reloading stretch at every change.
+const Constraint* Dda3d::Impl::transferred_from(const std::vector<const Constraint*>& vanished,
+                                                const kernel::ContactConstraint& c) const {
+  const Constraint* best = nullptr;
+  double nearest = params.max_displacement_ratio * size;
+  for (const Constraint* k : vanished) {
+    if (vec(k->geometry.normal).dot(vec(c.normal)) < std::cos(transfer_angle)) continue;
+    const double distance = (vec(k->geometry.point_tp) - vec(c.point_tp)).norm();
+    if (distance <= nearest) nearest = distance, best = k;
+  }
+  return best;
+}
+
 // Step 1 of the header: the constraints of every pair within the detection range, each keeping
-// the record of the same constraint in the previous list.
-std::vector<Constraint> Dda3d::Impl::detect() {
+// the record of the same constraint in the previous list (by key, else by contact transfer).
+std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
   std::map<ConstraintKey, const Constraint*> previous;
   for (const Constraint& c : constraints) previous.emplace(key_of(c.a, c.b, c.geometry), &c);
   std::vector<Constraint> out;
@@ -281,7 +652,10 @@ std::vector<Constraint> Dda3d::Impl::detect() {
       for (const kernel::ContactConstraint& c : found) {
         if (c.gap < -range && -c.gap > deepest.depth) deepest = {-c.gap, a, b};
       }
-      std::erase_if(found, [&](const kernel::ContactConstraint& c) { return c.gap < -range; });
+      std::erase_if(found, [&](const kernel::ContactConstraint& c) {
+        return c.gap < -range || (c.type == kernel::ConstraintType::edge_edge && nearly_parallel(ba, bb, c));
+      });
+      hold_contacts(a, b, found);
       // The area a vertex-face constraint stands for: its face's, shared by the pair's
       // vertex-face constraints on that face.
       std::map<std::tuple<int, std::uint32_t, std::uint32_t>, int> on_face;
@@ -294,6 +668,7 @@ std::vector<Constraint> Dda3d::Impl::detect() {
         if (c.type == kernel::ConstraintType::vertex_face) ++on_face[face_of(c)];
       }
       const detail::ContactLaw3d pair = pair_law(ba, bb);
+      const std::vector<const Constraint*> vanished = vanished_contacts(a, b, found);
       for (const kernel::ContactConstraint& c : found) {
         Constraint k;
         k.a = a;
@@ -306,17 +681,33 @@ std::vector<Constraint> Dda3d::Impl::detect() {
           const ConvexPolyhedron& poly = (side == 0 ? ba : bb).parts[part];
           area = face_area(poly, poly.faces()[index]) / on_face[face_of(c)];
         }
+        k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
         k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                                   {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
         if (const auto it = previous.find(key_of(a, b, c)); it != previous.end()) {
           k.state = it->second->state;
+        } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
+          // The transferred spring keeps its normal force: its offset moves with the gap.
+          k.state = from->state;
+          k.state.shear -= k.state.shear.dot(vec(c.normal)) * vec(c.normal);
+          k.state.offset = std::min(0.0, c.gap - (from->update.gap - from->state.offset));
         } else {
           k.state.mode = c.gap > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
+          // Born penetrating inside an overlap the other constraints of the pair resist (its
+          // features came into contact within it, as a crossing that moved onto new edges): it
+          // resists further penetration only (contact_terms3d.hpp). At the start, an overlap
+          // given in the scene is pushed out in full.
+          if (!at_start && c.gap < 0.0) k.state.offset = c.gap;
         }
-        if (k.state.mode != detail::ContactMode::open) {
-          k.start_energy = 0.5 * k.law.kn * k.kinematics.gap * k.kinematics.gap +
-                           0.5 * k.law.kt * k.state.shear.squaredNorm();
+        // A closed record on a pair now apart beyond what its tensile strength holds (the
+        // geometry of this step, re-detected, is the judge, as after a solve) starts open: its
+        // spring would otherwise pull the blocks back in the first iteration and count energy
+        // it never stored.
+        if (k.state.mode != detail::ContactMode::open &&
+            pair.kn * (k.kinematics.gap - k.state.offset) > pair.tensile_strength * k.kinematics.area) {
+          k.state = detail::ContactState3d{};
         }
+        k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
         if (k.state.sliding_direction.isZero()) {
           // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
           // velocity; the open-close iteration takes it from the solution after that (eq. 8).
@@ -333,7 +724,13 @@ std::vector<Constraint> Dda3d::Impl::detect() {
 
 // Step 2: assemble and solve for the increments d; `numerical` receives the elastic springs'
 // share of the integrator's dissipation, ½ dᵀ K_e d.
-void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical) const {
+//
+// `settling` (the initial equilibrium, header): the blocks it marks are solved for static
+// equilibrium (no inertia: K D = F_g - V σ + F_c, with a stiffness of settle_regularization times
+// the inertia term tying them to where they are, so that a mode their contacts leave free is
+// found as a large displacement instead of a singular matrix); the others keep their place.
+void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
+                        const std::vector<char>* settling) const {
   const auto n = static_cast<Eigen::Index>(unknowns);
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
@@ -354,6 +751,14 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
     const Eigen::MatrixXd m = b.mass_matrix();
     Eigen::MatrixXd k = (2.0 / (h * h)) * m;
     Eigen::VectorXd f = detail::gravity_load(b.mass, g).head(b.dof) + (2.0 / h) * m * b.velocity;
+    if (settling != nullptr) {
+      if (!(*settling)[i]) {
+        scatter(b.offset, b.offset, k);
+        continue;
+      }
+      k *= settle_regularization;
+      f = detail::gravity_load(b.mass, g).head(b.dof);
+    }
     springs[i] = Eigen::MatrixXd::Zero(b.dof, b.dof);
     if (b.dof == detail::dof3d) {
       springs[i] = detail::elastic_stiffness(b.elasticity, b.moments.volume);
@@ -417,9 +822,13 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
       const bool was_closed = k.state.mode != detail::ContactMode::open;
       const bool is_closed = k.update.mode != detail::ContactMode::open;
-      // §4.3: the iteration converges when no contact changes between open and closed; a
-      // locked/sliding change is taken over for the next iteration without forcing one.
-      changed = changed || was_closed != is_closed;
+      // §4.3: the iteration converges when no contact changes between open and closed and no
+      // locked spring gave way: the solve held it with its full stiffness, which a sliding
+      // contact does not have (a step accepted so would stop a frictionless block for every new
+      // contact). A sliding contact that locks again is taken over for the next iteration
+      // without forcing one: it held the friction force, which the locked spring starts from.
+      changed = changed || was_closed != is_closed ||
+                (k.state.mode == detail::ContactMode::locked && k.update.mode == detail::ContactMode::sliding);
       // The friction work of a sliding contact: its force times the slip, the tangential
       // relative displacement less what the spring took up elastically.
       k.slip_work = 0.0;
@@ -447,7 +856,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
             closed ? Eigen::Vector3d(k.update.normal_force * k.kinematics.normal + k.update.tangential_force)
                    : Eigen::Vector3d::Zero();
         const double end_energy =
-            closed ? 0.5 * k.law.kn * k.update.gap * k.update.gap + 0.5 * k.law.kt * k.update.shear.squaredNorm() : 0.0;
+            detail::spring_energy(k.law, k.update.mode, k.state.offset, k.update.gap, k.update.shear);
         numerical += k.start_energy - end_energy - k.slip_work - end_force.dot(relative);
       }
       return true;
@@ -478,12 +887,8 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
     if (b.dof == 0) continue;
     const Eigen::VectorXd di = d.segment(static_cast<Eigen::Index>(b.offset), b.dof);
     b.velocity = 2.0 / h * di - b.velocity;
-    if (b.dof == detail::dof3d) b.stress += b.elasticity * di.tail<6>();
-    b.rotation = detail::accumulate_rotation(b.rotation, di.segment<3>(3));
-    b.parts = detail::moved_parts(b.parts, detail::step_map(b.moments.centroid, di));
-    b.moments = detail::central_moments3d(b.parts);
-    b.box = box_of(b.parts);
-    refresh_state(i);
+    if (params.static_analysis) b.velocity.setZero();
+    move(i, di);
   }
   for (Constraint& k : list) {
     detail::commit_step(k.state, k.update);
@@ -499,6 +904,17 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
   last.closed = static_cast<std::size_t>(std::count_if(constraints.begin(), constraints.end(), [](const Constraint& k) {
     return k.state.mode != detail::ContactMode::open;
   }));
+}
+
+// Moves block i by the increments `di` of a solve: its stress, rotation, parts and moments.
+void Dda3d::Impl::move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& di) {
+  Block& b = blocks[i];
+  if (b.dof == detail::dof3d) b.stress += b.elasticity * di.tail<6>();
+  b.rotation = detail::accumulate_rotation(b.rotation, di.segment<3>(3));
+  b.parts = detail::moved_parts(b.parts, detail::step_map(b.moments.centroid, di));
+  b.moments = detail::central_moments3d(b.parts);
+  b.box = box_of(b.parts);
+  refresh_state(i);
 }
 
 void Dda3d::Impl::refresh_state(std::size_t i) {
@@ -589,8 +1005,7 @@ Energies3d Dda3d::energies() const {
     }
   }
   for (const Constraint& k : s.constraints) {
-    if (k.state.mode == detail::ContactMode::open) continue;
-    e.contact += 0.5 * k.law.kn * k.update.gap * k.update.gap + 0.5 * k.law.kt * k.state.shear.squaredNorm();
+    e.contact += detail::spring_energy(k.law, k.state.mode, k.state.offset, k.update.gap, k.state.shear);
   }
   e.friction_dissipated = s.friction_dissipated;
   e.numerical_dissipated = s.numerical_dissipated;

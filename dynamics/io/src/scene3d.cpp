@@ -26,6 +26,9 @@ constexpr JsonField scene_fields[] = {
     {"dimension", true, "3"},
     {"time", true, "an object {\"dt\", \"duration\", \"max_displacement_ratio\"}"},
     {"gravity", false, "the gravity [gx, gy, gz] in m/s², three finite numbers"},
+    {"initial_equilibrium", false,
+     "true or false: settle the blocks resting at the start before the run (default true)"},
+    {"analysis", false, "one of \"dynamic\", \"static\" (velocities zeroed after every step)"},
     {"materials", true,
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
     {"contact", true, "an object {\"law\": \"penalty\", \"kn\", \"kt\", ...}"},
@@ -159,6 +162,22 @@ class Scene3dParser {
     const auto g =
         reader_.numbers(document.at("gravity"), "gravity", 3, expected(scene_fields, "gravity"));
     scene.params.gravity = {g[0], g[1], g[2]};
+  }
+
+  void analysis(const json& document, Scene3d& scene) const {
+    if (document.contains("initial_equilibrium")) {
+      scene.params.initial_equilibrium = reader_.boolean(document.at("initial_equilibrium"), "initial_equilibrium",
+                                                         expected(scene_fields, "initial_equilibrium"));
+    }
+    if (document.contains("analysis")) {
+      scene.params.static_analysis =
+          reader_.choice<bool>(document.at("analysis"), "analysis", expected(scene_fields, "analysis"),
+                         +[](std::string_view text) -> std::optional<bool> {
+                           if (text == "dynamic") return false;
+                           if (text == "static") return true;
+                           return std::nullopt;
+                         });
+    }
   }
 
   void materials(const json& value) {
@@ -458,6 +477,7 @@ Scene3d parse_scene3d(const json& document, const std::string& source_name) {
   parser.header(document, scene);
   parser.time(document.at("time"), scene);
   parser.gravity(document, scene);
+  parser.analysis(document, scene);
   parser.materials(document.at("materials"));
   parser.contact(document.at("contact"), scene);
   parser.blocks(document, scene);

@@ -10,10 +10,17 @@
 //      feature ids; kernel/3d/contact_constraints.hpp) closer than the detection range, less
 //      those deeper than it (no step moves a vertex that far: such a vertex crossed an internal
 //      face of a non-convex block and the part it is in would push it out through its far
-//      side; the neighbouring part's constraint holds it). A
-//      constraint that was in the list at the previous step, identified by its pair and its two
-//      features, keeps its mode and tangential spring (§4.2); a new one starts open when its gap
-//      is positive, locked otherwise;
+//      side; the neighbouring part's constraint holds it), and edge-edge crossings of edges
+//      within 10⁻³ (sine) of parallel (the vertex contacts at the ends of their overlap carry
+//      it). The contact list remembers (§4.2): a constraint closed at the previous step keeps
+//      its plane while its features stay in contact (a vertex over its face, two vertices
+//      within the range, a crossing on both edges), replacing the kernel's shortest exit, which
+//      next to a concave edge of a non-convex block can name a face the vertex never came
+//      through (dda3d.cpp, hold_contacts). A constraint identified by its pair and its two
+//      features keeps its mode and tangential spring; one whose features changed (a crossing
+//      past an edge's end) takes them over from the vanished constraint of the pair within a
+//      step's largest motion and 15° of its normal (contact transfer); any other starts open
+//      when its gap is positive, locked otherwise;
 //   2. the global equation (eq. 13), one sparse symmetric system in the unknowns of every movable
 //      block (fixed blocks have none):
 //        (2 M / h² + K_e + K_c) D = F_g + (2 / h) M v_n - V σ_n + F_c
@@ -23,7 +30,8 @@
 //      Eigen::SimplicialLDLT;
 //   3. the open-close iteration (§4.3): every constraint's mode is re-decided from the solution
 //      (contact_terms3d.hpp: Table 2 with the project's elastoplastic tangential spring); while a
-//      mode changes the system is re-assembled and solved again, at most
+//      contact changes between open and closed, or a locked one gives way to sliding (the solve
+//      held it with its full stiffness), the system is re-assembled and solved again, at most
 //      Dda3dParams::max_open_close times;
 //   4. step control (§5.2, eq. 50): the step is cut (h / 2) and redone from t_n when the
 //      iteration does not converge or when a vertex moves farther than max_displacement_ratio
@@ -33,6 +41,20 @@
 //      every vertex moved by x -> c + u0 + R(r) (I + ε) (x - c) with the exact rotation R(r)
 //      (block_matrices3d.hpp): a spinning block keeps its volume, where the first-order map
 //      I + T would inflate it by 1 + |r|² a step (§5.2); the constraints' springs commit.
+// Initial equilibrium (Dda3dParams::initial_equilibrium, on by default; not in seed 001): a block
+// released at zero tangential stretch under gravity is not in equilibrium; its springs load
+// from zero and overshoot, and near the friction limit the overshoot slides it (the §6.1
+// wedge crept 3 cm in 1 s at a factor 2 % below its factor of safety). The constructor first
+// solves for the static equilibrium of the blocks resting on a fixed block at the start,
+// directly or through other resting blocks (gaps up to 10⁻⁶ of the scene's size count): one
+// implicit solve without inertia, K D = F_g - V σ + F_c, every closed constraint locked
+// whatever its friction, the open-close iteration deciding which close. The blocks move there
+// with their stresses and springs loaded and keep their initial velocities; the energies'
+// references start after it. A block its resting contacts do not hold (the solve would move it
+// farther than a step may) is an error naming it.
+// Static analysis (Dda3dParams::static_analysis, the scene's "analysis": "static"): Shi's, the
+// velocities zeroed after every step, so each step moves the blocks towards equilibrium under
+// the inertia term of the step alone (no kinetic energy carries over).
 // Contact area of a constraint (for cohesion and tensile strength, Pa times m²): a vertex-face
 // constraint stands for its face's area divided among the vertex-face constraints of the pair
 // on that face; the other types stand for no area (cohesion and tensile strength act through
@@ -104,6 +126,8 @@ struct Dda3dParams {
   double max_displacement_ratio = 1.0e-3;     // of the scene's size per step, in (0, 1)
   std::size_t max_open_close = 30;            // open-close iterations per step before a cut, >= 1
   double min_dt_ratio = 1.0e-6;               // the step may shrink to dt times this, in (0, 1)
+  bool initial_equilibrium = true;            // settle the resting blocks first (header)
+  bool static_analysis = false;               // velocities zeroed after every step (header)
 };
 
 struct Block3dState {
