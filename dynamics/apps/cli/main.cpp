@@ -29,8 +29,8 @@
 #include "fuzz_cases.hpp"
 #include "rockcontact/dynamics/io/atomic_file.hpp"
 #include "rockcontact/dynamics/dda2d.hpp"
-#include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/apps/pairs_compare.hpp"
+#include "rockcontact/dynamics/apps/safety_factor.hpp"
 #include "rockcontact/dynamics/io/cut3d.hpp"
 #include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/io/pairs_io.hpp"
@@ -419,6 +419,84 @@ void add_cut(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_cut(*options); });
 }
 
+struct SafetyFactorArgs {
+  std::string scene;
+  std::string block;
+  std::string output = "-";
+  dyn::SafetyFactorParams params;
+};
+
+std::string_view status_name(dyn::SafetyStatus status) {
+  switch (status) {
+    case dyn::SafetyStatus::converged: return "converged";
+    case dyn::SafetyStatus::stable_at_max: return "stable_at_max";
+    case dyn::SafetyStatus::slides_at_min: return "slides_at_min";
+  }
+  return "converged";
+}
+
+// The factor of safety of one block of a 3D scene by strength reduction
+// (dynamics/apps/safety_factor.hpp), written as {"factor_of_safety",
+// "critical_friction_angle_deg", "iterations", "status", "trials": [{"factor", "slid",
+// "displacement"}]} plus the slip threshold and the trials' wall seconds.
+int run_safety_factor(const SafetyFactorArgs& options) {
+  const nlohmann::json document = dyn::read_json_file(options.scene);
+  if (!document.is_object() || !document.contains("dimension") || document.at("dimension") != 3) {
+    std::cerr << "rockcontact: " << options.scene
+              << ": dimension: safety-factor needs a 3D scene (\"dimension\": 3)\n";
+    return exit_bad_input;
+  }
+  const dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
+  dyn::SafetyFactorResult result;
+  try {
+    result = dyn::safety_factor(scene.blocks, scene.law, scene.params, options.block, options.params);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const dyn::Stability3dError& e) {
+    std::cerr << "rockcontact: " << options.scene << ": a trial stopped: " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  nlohmann::ordered_json trials = nlohmann::ordered_json::array();
+  for (const dyn::SafetyTrial& t : result.trials) {
+    trials.push_back({{"factor", t.factor}, {"slid", t.slid}, {"displacement", t.displacement},
+                      {"wall_seconds", t.run_seconds}});
+  }
+  write_json(options.output, {{"block", options.block},
+                              {"factor_of_safety", result.factor_of_safety},
+                              {"critical_friction_angle_deg", result.critical_friction_angle_deg},
+                              {"iterations", result.iterations},
+                              {"status", status_name(result.status)},
+                              {"slip", result.slip},
+                              {"time", options.params.time},
+                              {"trials", trials}});
+  std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
+  summary << "block " << options.block << ": factor of safety " << result.factor_of_safety << " ("
+          << status_name(result.status) << ", " << result.iterations << " trials of " << options.params.time
+          << " s, slip threshold " << result.slip << " m)\n";
+  return exit_ok;
+}
+
+void add_safety_factor(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<SafetyFactorArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "safety-factor",
+      "Factor of safety of a block of a 3D scene by strength reduction (tan phi / F, c / F on every "
+      "interface it touches, bisection on F over [0.1, 10] to 1e-3 relative)");
+  sub->add_option("scene", options->scene, "3D scene JSON")->required();
+  sub->add_option("--block", options->block, "The id of the block (movable)")->required();
+  sub->add_option("-o,--output", options->output, "Result JSON ('-' for stdout)")->capture_default_str();
+  sub->add_option("--slip", options->params.slip_ratio,
+                  "A trial slides when the block's centroid moves farther than this fraction of its "
+                  "size (the cube root of its volume)")
+      ->check(CLI::Range(0.0, 1.0).description("in (0, 1)"))
+      ->capture_default_str();
+  sub->add_option("--time", options->params.time, "Simulated seconds of each trial")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->callback([options, &exit_status] { exit_status = run_safety_factor(*options); });
+}
+
 // The paper scenes: beside an installed executable (PREFIX/bin/rockcontact reads
 // PREFIX/share/rockcontact/scenes), else in the source tree this executable was built from.
 std::string default_scenes_dir() {
@@ -573,6 +651,7 @@ int main(int argc, char** argv) {
   add_pairs(app, exit_status);
   add_run(app, exit_status);
   add_cut(app, exit_status);
+  add_safety_factor(app, exit_status);
   add_validate(app, exit_status);
   add_report(app, exit_status);
   add_fuzz_cases(app, exit_status);
