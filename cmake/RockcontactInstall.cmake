@@ -29,6 +29,9 @@ install(TARGETS rockcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes
   FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes3d/
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes3d
+  FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
 
 # contact/embed/include also holds the C API beside its rockcontact/ tree: rockcontact.h and its
 # Fortran module rockcontact.f90, installed as source since .mod files are compiler-specific.

@@ -10,6 +10,8 @@
 //   §5.1 bouncing block, 0.1 m and 1 m bases  unified H: same history; inscribed H: different
 //   §5.2 5° triangles meeting head-on         point-symmetric response, bounded energy
 //   §5.3 vertex on a 0.01 m edge / neighbour  bounded energy, the block rebounds
+//   seed 001 §6.1 wedge (examples/scenes3d)   factor of safety vs limit equilibrium; the
+//                                              frictionless slide vs ½ g sin ψ t²
 //
 // A run the engine stops (StabilityError) fails its rows with the engine's message.
 
