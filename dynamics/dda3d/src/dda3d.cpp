@@ -238,11 +238,15 @@ bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactCons
 
 // A closed edge-edge constraint with the blocks where they are now: the closest points of the two
 // edges' lines, the normal their cross product turned to the side of `from`'s; nullopt when the
-// edges have turned nearly parallel, their lines are farther apart than `range`, or a closest
-// point is off its edge by more than `range` (the crossing has left the edges). Held so, a
+// edges have turned nearly parallel, their lines are farther apart than `range`, a closest point
+// is off its edge by more than `range` (the crossing has left the edges), or the gap differs
+// from `end_gap`, the one the last solve left, by more than a quarter of the range (half a
+// step's largest motion: the lines' closest points have jumped, as they do where the crossing
+// runs off an edge's end, and the distance of the lines there is no penetration). Held so, a
 // crossing near the end of an edge does not come and go with the rounding of its parameters.
 std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Block& tp,
-                                                       const kernel::ContactConstraint& from, double range) {
+                                                       const kernel::ContactConstraint& from, double end_gap,
+                                                       double range) {
   const ConvexPolyhedron& x = cp.parts[from.cp_feature.part];
   const ConvexPolyhedron& y = tp.parts[from.tp_feature.part];
   const auto [i, j] = x.edges()[from.cp_feature.index];
@@ -262,7 +266,7 @@ std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Bl
   if (!on_edge(s, std::sqrt(uu)) || !on_edge(t, std::sqrt(ww))) return std::nullopt;
   const Eigen::Vector3d on_cp = p + s * u, on_tp = q + t * w;
   const double gap = (on_tp - on_cp).dot(n);
-  if (std::abs(gap) > range) return std::nullopt;
+  if (std::abs(gap) > range || std::abs(gap - end_gap) > 0.25 * range) return std::nullopt;
   kernel::ContactConstraint c = from;
   c.point_cp = point(on_cp);
   c.point_tp = point(on_tp);
@@ -567,7 +571,9 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b,
     continuing.insert(key_of(a, b, k.geometry));
     for (const ContactVertex& v : vertices_of(k.geometry)) supported.insert(v);
     if (k.geometry.type == kernel::ConstraintType::edge_edge) {
-      if (auto c = held_crossing(blocks[a], blocks[b], k.geometry, range)) crossings.push_back(std::move(*c));
+      if (auto c = held_crossing(blocks[a], blocks[b], k.geometry, k.update.gap, range)) {
+        crossings.push_back(std::move(*c));
+      }
       continue;
     }
     const Eigen::Vector3d normal = blocks[b].rotation * k.normal_in_tp;
