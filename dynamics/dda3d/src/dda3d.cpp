@@ -1,7 +1,11 @@
 #include "rockcontact/dynamics/dda3d.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <exception>
+#include <numeric>
+#include <span>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -11,6 +15,8 @@
 #include <string>
 #include <tuple>
 #include <utility>
+
+#include <omp.h>
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
@@ -338,6 +344,10 @@ struct Dda3d::Impl {
     double depth = 0.0;
     std::size_t a = 0, b = 0;
   } deepest;
+  // Wall seconds spent so far in detection and in the solves (assembly and factorization).
+  mutable struct {
+    double detection = 0.0, solve = 0.0;
+  } timing;
   Step3dStats last;
   double friction_dissipated = 0.0, numerical_dissipated = 0.0;
   kernel::PredicateCounters predicates;
@@ -346,8 +356,13 @@ struct Dda3d::Impl {
   void validate_law() const;
   detail::ContactLaw3d pair_law(const Block& a, const Block& b) const;
   std::vector<Constraint> detect(bool at_start = false);
-  void hold_contacts(std::size_t a, std::size_t b, std::vector<kernel::ContactConstraint>& found) const;
-  std::vector<const Constraint*> vanished_contacts(std::size_t a, std::size_t b,
+  std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs() const;
+  std::vector<Constraint> pair_constraints(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
+                                           const std::map<ConstraintKey, const Constraint*>& previous, bool at_start,
+                                           Dropped& dropped) const;
+  void hold_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
+                     std::vector<kernel::ContactConstraint>& found) const;
+  std::vector<const Constraint*> vanished_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
                                                    const std::vector<kernel::ContactConstraint>& found) const;
   const Constraint* transferred_from(const std::vector<const Constraint*>& vanished,
                                      const kernel::ContactConstraint& c) const;
@@ -560,14 +575,14 @@ detail::ContactLaw3d Dda3d::Impl::pair_law(const Block& a, const Block& b) const
 // way takes no new penetrating constraint (a vertex enters a face only from outside, where the
 // kernel sees it first with a positive gap). The kernel's open constraints of such a vertex stay:
 // it may come to a second face.
-void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b,
-                                         std::vector<kernel::ContactConstraint>& found) const {
+void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
+                                std::vector<kernel::ContactConstraint>& found) const {
   std::set<ContactVertex> supported, held_vertices;
   std::map<Hold, kernel::ContactConstraint> held;
   std::vector<kernel::ContactConstraint> crossings;
   std::set<ConstraintKey> continuing, crossing_keys;
-  for (const Constraint& k : constraints) {
-    if (k.a != a || k.b != b || k.state.mode == detail::ContactMode::open) continue;
+  for (const Constraint& k : earlier) {
+    if (k.state.mode == detail::ContactMode::open) continue;
     continuing.insert(key_of(a, b, k.geometry));
     for (const ContactVertex& v : vertices_of(k.geometry)) supported.insert(v);
     if (k.geometry.type == kernel::ConstraintType::edge_edge) {
@@ -604,12 +619,13 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b,
 // found (their features changed: a crossing moved past an edge's end, a vertex slid from a face
 // onto an edge).
 std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::size_t a, std::size_t b,
+                                                             std::span<const Constraint> earlier,
                                                              const std::vector<kernel::ContactConstraint>& found) const {
   std::set<ConstraintKey> keys;
   for (const kernel::ContactConstraint& c : found) keys.insert(key_of(a, b, c));
   std::vector<const Constraint*> out;
-  for (const Constraint& k : constraints) {
-    if (k.a == a && k.b == b && k.state.mode != detail::ContactMode::open && !keys.contains(key_of(a, b, k.geometry))) {
+  for (const Constraint& k : earlier) {
+    if (k.state.mode != detail::ContactMode::open && !keys.contains(key_of(a, b, k.geometry))) {
       out.push_back(&k);
     }
   }
@@ -636,95 +652,157 @@ const Constraint* Dda3d::Impl::transferred_from(const std::vector<const Constrai
 
 // Step 1 of the header: the constraints of every pair within the detection range, each keeping
 // the record of the same constraint in the previous list (by key, else by contact transfer).
-std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
-  std::map<ConstraintKey, const Constraint*> previous;
-  for (const Constraint& c : constraints) previous.emplace(key_of(c.a, c.b, c.geometry), &c);
-  std::vector<Constraint> out;
-  const kernel::PredicateCounters before = kernel::predicate_counters();
-  for (std::size_t a = 0; a < blocks.size(); ++a) {
-    for (std::size_t b = a + 1; b < blocks.size(); ++b) {
-      const Block &ba = blocks[a], &bb = blocks[b];
-      if (ba.dof == 0 && bb.dof == 0) continue;
-      if (!ba.box.meets(bb.box, range)) continue;
-      std::vector<kernel::ContactConstraint> found = kernel::with_policy(law.policy, [&](auto policy) {
-        using Policy = decltype(policy);
-        return kernel::contact_constraints<Policy>(std::span<const ConvexPolyhedron>(ba.parts),
-                                                   std::span<const ConvexPolyhedron>(bb.parts), range);
-      });
-      // No step moves a vertex farther than half the range (step 4), so a vertex deeper than
-      // the range has not entered where the kernel's shortest exit says: it crossed an internal
-      // face of a non-convex block, and its exit through the far side of that part would fling
-      // the blocks apart. The neighbouring part's constraint is the one that holds it.
-      for (const kernel::ContactConstraint& c : found) {
-        if (c.gap < -range && -c.gap > deepest.depth) deepest = {-c.gap, a, b};
-      }
-      std::erase_if(found, [&](const kernel::ContactConstraint& c) {
-        return c.gap < -range || (c.type == kernel::ConstraintType::edge_edge && nearly_parallel(ba, bb, c));
-      });
-      hold_contacts(a, b, found);
-      // The area a vertex-face constraint stands for: its face's, shared by the pair's
-      // vertex-face constraints on that face.
-      std::map<std::tuple<int, std::uint32_t, std::uint32_t>, int> on_face;
-      const auto face_of = [](const kernel::ContactConstraint& c) {
-        const bool cp_face = c.cp_feature.kind == kernel::Feature::Kind::face;
-        const kernel::Feature& f = cp_face ? c.cp_feature : c.tp_feature;
-        return std::tuple<int, std::uint32_t, std::uint32_t>{cp_face ? 0 : 1, f.part, f.index};
-      };
-      for (const kernel::ContactConstraint& c : found) {
-        if (c.type == kernel::ConstraintType::vertex_face) ++on_face[face_of(c)];
-      }
-      const detail::ContactLaw3d pair = pair_law(ba, bb);
-      const std::vector<const Constraint*> vanished = vanished_contacts(a, b, found);
-      for (const kernel::ContactConstraint& c : found) {
-        Constraint k;
-        k.a = a;
-        k.b = b;
-        k.geometry = c;
-        k.law = pair;
-        double area = 0.0;
-        if (c.type == kernel::ConstraintType::vertex_face) {
-          const auto [side, part, index] = face_of(c);
-          const ConvexPolyhedron& poly = (side == 0 ? ba : bb).parts[part];
-          area = face_area(poly, poly.faces()[index]) / on_face[face_of(c)];
-        }
-        k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
-        k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
-                                                  {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
-        if (const auto it = previous.find(key_of(a, b, c)); it != previous.end()) {
-          k.state = it->second->state;
-        } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
-          // The transferred spring keeps its normal force: its offset moves with the gap.
-          k.state = from->state;
-          k.state.shear -= k.state.shear.dot(vec(c.normal)) * vec(c.normal);
-          k.state.offset = std::min(0.0, c.gap - (from->update.gap - from->state.offset));
-        } else {
-          k.state.mode = c.gap > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
-          // Born penetrating inside an overlap the other constraints of the pair resist (its
-          // features came into contact within it, as a crossing that moved onto new edges): it
-          // resists further penetration only (contact_terms3d.hpp). At the start, an overlap
-          // given in the scene is pushed out in full.
-          if (!at_start && c.gap < 0.0) k.state.offset = c.gap;
-        }
-        // A closed record on a pair now apart beyond what its tensile strength holds (the
-        // geometry of this step, re-detected, is the judge, as after a solve) starts open: its
-        // spring would otherwise pull the blocks back in the first iteration and count energy
-        // it never stored.
-        if (k.state.mode != detail::ContactMode::open &&
-            pair.kn * (k.kinematics.gap - k.state.offset) > pair.tensile_strength * k.kinematics.area) {
-          k.state = detail::ContactState3d{};
-        }
-        k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
-        if (k.state.sliding_direction.isZero()) {
-          // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
-          // velocity; the open-close iteration takes it from the solution after that (eq. 8).
-          const Eigen::Vector3d relative = k.kinematics.t_j * bb.velocity - k.kinematics.t_i * ba.velocity;
-          if (const auto v = kernel::sliding_direction(c.normal, point(relative))) k.state.sliding_direction = vec(*v);
-        }
-        out.push_back(std::move(k));
-      }
+// The pairs of blocks whose boxes, widened by the range, overlap (and not both fixed): sweep and
+// prune along x, sorted by block indices so the list does not depend on the sort.
+std::vector<std::pair<std::size_t, std::size_t>> Dda3d::Impl::candidate_pairs() const {
+  std::vector<std::size_t> order(blocks.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t i, std::size_t j) { return blocks[i].box.lo.x() < blocks[j].box.lo.x(); });
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Block& bi = blocks[order[i]];
+    for (std::size_t j = i + 1; j < order.size() && blocks[order[j]].box.lo.x() - range <= bi.box.hi.x(); ++j) {
+      const Block& bj = blocks[order[j]];
+      if ((bi.dof == 0 && bj.dof == 0) || !bi.box.meets(bj.box, range)) continue;
+      pairs.push_back(std::minmax(order[i], order[j]));
     }
   }
-  predicates += kernel::predicate_counters() - before;
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// The constraints of the pair (a, b) (step 1 of the header); `earlier` are the pair's constraints
+// in the last list, `previous` all of them by key; `dropped` receives the deepest it dropped.
+std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
+                                                      const std::map<ConstraintKey, const Constraint*>& previous,
+                                                      bool at_start, Dropped& dropped) const {
+  const Block &ba = blocks[a], &bb = blocks[b];
+  std::vector<Constraint> out;
+  std::vector<kernel::ContactConstraint> found = kernel::with_policy(law.policy, [&](auto policy) {
+    using Policy = decltype(policy);
+    return kernel::contact_constraints<Policy>(std::span<const ConvexPolyhedron>(ba.parts),
+                                               std::span<const ConvexPolyhedron>(bb.parts), range);
+  });
+  // No step moves a vertex farther than half the range (step 4), so a vertex deeper than
+  // the range has not entered where the kernel's shortest exit says: it crossed an internal
+  // face of a non-convex block, and its exit through the far side of that part would fling
+  // the blocks apart. The neighbouring part's constraint is the one that holds it.
+  for (const kernel::ContactConstraint& c : found) {
+    if (c.gap < -range && -c.gap > dropped.depth) dropped = {-c.gap, a, b};
+  }
+  std::erase_if(found, [&](const kernel::ContactConstraint& c) {
+    return c.gap < -range || (c.type == kernel::ConstraintType::edge_edge && nearly_parallel(ba, bb, c));
+  });
+  hold_contacts(a, b, earlier, found);
+  // The area a vertex-face constraint stands for: its face's, shared by the pair's
+  // vertex-face constraints on that face.
+  std::map<std::tuple<int, std::uint32_t, std::uint32_t>, int> on_face;
+  const auto face_of = [](const kernel::ContactConstraint& c) {
+    const bool cp_face = c.cp_feature.kind == kernel::Feature::Kind::face;
+    const kernel::Feature& f = cp_face ? c.cp_feature : c.tp_feature;
+    return std::tuple<int, std::uint32_t, std::uint32_t>{cp_face ? 0 : 1, f.part, f.index};
+  };
+  for (const kernel::ContactConstraint& c : found) {
+    if (c.type == kernel::ConstraintType::vertex_face) ++on_face[face_of(c)];
+  }
+  const detail::ContactLaw3d pair = pair_law(ba, bb);
+  const std::vector<const Constraint*> vanished = vanished_contacts(a, b, earlier, found);
+  for (const kernel::ContactConstraint& c : found) {
+    Constraint k;
+    k.a = a;
+    k.b = b;
+    k.geometry = c;
+    k.law = pair;
+    double area = 0.0;
+    if (c.type == kernel::ConstraintType::vertex_face) {
+      const auto [side, part, index] = face_of(c);
+      const ConvexPolyhedron& poly = (side == 0 ? ba : bb).parts[part];
+      area = face_area(poly, poly.faces()[index]) / on_face[face_of(c)];
+    }
+    k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
+    k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
+                                              {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
+    if (const auto it = previous.find(key_of(a, b, c)); it != previous.end()) {
+      k.state = it->second->state;
+    } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
+      // The transferred spring keeps its normal force: its offset moves with the gap.
+      k.state = from->state;
+      k.state.shear -= k.state.shear.dot(vec(c.normal)) * vec(c.normal);
+      k.state.offset = std::min(0.0, c.gap - (from->update.gap - from->state.offset));
+    } else {
+      k.state.mode = c.gap > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
+      // Born penetrating inside an overlap the other constraints of the pair resist (its
+      // features came into contact within it, as a crossing that moved onto new edges): it
+      // resists further penetration only (contact_terms3d.hpp). At the start, an overlap
+      // given in the scene is pushed out in full.
+      if (!at_start && c.gap < 0.0) k.state.offset = c.gap;
+    }
+    // A closed record on a pair now apart beyond what its tensile strength holds (the
+    // geometry of this step, re-detected, is the judge, as after a solve) starts open: its
+    // spring would otherwise pull the blocks back in the first iteration and count energy
+    // it never stored.
+    if (k.state.mode != detail::ContactMode::open &&
+        pair.kn * (k.kinematics.gap - k.state.offset) > pair.tensile_strength * k.kinematics.area) {
+      k.state = detail::ContactState3d{};
+    }
+    k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
+    if (k.state.sliding_direction.isZero()) {
+      // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
+      // velocity; the open-close iteration takes it from the solution after that (eq. 8).
+      const Eigen::Vector3d relative = k.kinematics.t_j * bb.velocity - k.kinematics.t_i * ba.velocity;
+      if (const auto v = kernel::sliding_direction(c.normal, point(relative))) k.state.sliding_direction = vec(*v);
+    }
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
+std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
+  const auto started = std::chrono::steady_clock::now();
+  std::map<ConstraintKey, const Constraint*> previous;
+  for (const Constraint& c : constraints) previous.emplace(key_of(c.a, c.b, c.geometry), &c);
+  // The last list is built pair by pair, so each pair's constraints are consecutive in it.
+  std::map<std::pair<std::size_t, std::size_t>, std::span<const Constraint>> by_pair;
+  for (std::size_t i = 0; i < constraints.size();) {
+    std::size_t j = i;
+    while (j < constraints.size() && constraints[j].a == constraints[i].a && constraints[j].b == constraints[i].b) ++j;
+    by_pair.emplace(std::pair{constraints[i].a, constraints[i].b}, std::span<const Constraint>(constraints).subspan(i, j - i));
+    i = j;
+  }
+  const std::vector<std::pair<std::size_t, std::size_t>> pairs = candidate_pairs();
+  std::vector<std::vector<Constraint>> found(pairs.size());
+  std::vector<Dropped> dropped(pairs.size());
+  std::vector<kernel::PredicateCounters> spent(static_cast<std::size_t>(omp_get_max_threads()));
+  std::exception_ptr failure;
+  // The pairs are independent: each thread fills its pairs' slots, merged below in pair order,
+  // so the list is the same whatever the number of threads.
+#pragma omp parallel
+  {
+    const kernel::PredicateCounters before = kernel::predicate_counters();
+#pragma omp for schedule(dynamic, 4)
+    for (std::ptrdiff_t p = 0; p < static_cast<std::ptrdiff_t>(pairs.size()); ++p) {
+      const auto [a, b] = pairs[static_cast<std::size_t>(p)];
+      const auto it = by_pair.find({a, b});
+      try {
+        found[static_cast<std::size_t>(p)] =
+            pair_constraints(a, b, it == by_pair.end() ? std::span<const Constraint>() : it->second, previous, at_start,
+                             dropped[static_cast<std::size_t>(p)]);
+      } catch (...) {
+#pragma omp critical(rockcontact_dda3d_detect)
+        if (!failure) failure = std::current_exception();
+      }
+    }
+    spent[static_cast<std::size_t>(omp_get_thread_num())] = kernel::predicate_counters() - before;
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (const kernel::PredicateCounters& c : spent) predicates += c;
+  std::vector<Constraint> out;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (dropped[p].depth > deepest.depth) deepest = dropped[p];
+    for (Constraint& k : found[p]) out.push_back(std::move(k));
+  }
+  timing.detection += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }
 
