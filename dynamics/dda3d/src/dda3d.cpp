@@ -19,6 +19,7 @@
 #include <omp.h>
 
 #include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -89,59 +90,6 @@ double face_area(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& loo
   return 0.5 * doubled_vector_area(part, loop).norm();
 }
 
-// What the contact list holds of a closed constraint for the next step (§4.2): a vertex of one
-// block on a face of the other (`other` is that face), or a vertex of cp pressed on a vertex of
-// tp along a plane that is no face (an edge pair's plane or the line of the points; `other` is
-// tp's vertex, the normal turns with tp).
-struct Hold {
-  kernel::BlockRole vertex_side = kernel::BlockRole::cp;  // the vertex's block
-  kernel::Feature vertex;
-  kernel::Feature other;  // on the other block
-  auto tied() const {
-    return std::tuple(vertex_side, vertex.part, vertex.index, other.kind, other.part, other.index);
-  }
-  friend bool operator<(const Hold& x, const Hold& y) { return x.tied() < y.tied(); }
-};
-
-// The vertex and face of a constraint whose plane `source` is a face of one block and whose
-// point on the other block is a vertex; nullopt otherwise.
-std::optional<Hold> vertex_on_face(const kernel::ContactConstraint& c, const kernel::PlaneSource& source) {
-  using Kind = kernel::PlaneSource::Kind;
-  if (source.kind != Kind::cp_face && source.kind != Kind::tp_face) return std::nullopt;
-  const bool face_on_cp = source.kind == Kind::cp_face;
-  const kernel::Feature& vertex = face_on_cp ? c.tp_feature : c.cp_feature;
-  if (vertex.kind != kernel::Feature::Kind::vertex) return std::nullopt;
-  const kernel::Feature& face_side = face_on_cp ? c.cp_feature : c.tp_feature;
-  return Hold{face_on_cp ? kernel::BlockRole::tp : kernel::BlockRole::cp, vertex,
-              {kernel::Feature::Kind::face, face_on_cp ? source.cp_index : source.tp_index, face_side.part}};
-}
-
-// The hold of a constraint itself: its vertex on its face, or its two vertices; nullopt for an
-// edge-edge or a vertex-edge constraint whose plane is no face.
-std::optional<Hold> own_hold(const kernel::ContactConstraint& c) {
-  if (auto h = vertex_on_face(c, c.plane)) return h;
-  if (c.type != kernel::ConstraintType::vertex_vertex) return std::nullopt;
-  return Hold{kernel::BlockRole::cp, c.cp_feature, c.tp_feature};
-}
-
-// What a closed constraint holds for the next step: its own hold and, for a vertex-vertex
-// constraint whose plane is a face, the other vertex on each candidate face of the other block.
-// Two vertices that coincide (blocks cut from one region) are then both held, each on the faces
-// of the other block it rests on: the kernel reports such a contact once, from one of the
-// vertices, and the other would have no contact of its own once they part.
-std::vector<Hold> holds_of(const kernel::ContactConstraint& c) {
-  std::vector<Hold> out;
-  const std::optional<Hold> own = own_hold(c);
-  if (!own) return out;
-  out.push_back(*own);
-  if (c.type != kernel::ConstraintType::vertex_vertex || own->other.kind != kernel::Feature::Kind::face) return out;
-  for (const kernel::CandidatePlane& candidate : c.candidates) {
-    const std::optional<Hold> h = vertex_on_face(c, candidate.source);
-    if (h && h->vertex_side != own->vertex_side) out.push_back(*h);
-  }
-  return out;
-}
-
 // A vertex of one block of a pair: its block's role, its part and its index there.
 using ContactVertex = std::pair<kernel::BlockRole, std::pair<std::uint32_t, std::uint32_t>>;
 
@@ -171,11 +119,118 @@ struct Block {
   Eigen::MatrixXd mass_matrix() const { return detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
 
+// A feature that stays the same feature from step to step (convex_polyhedron.hpp, "Feature
+// ids"): a vertex by its index, an edge by its two vertices, a face by its index as given, not
+// by the facet or the edge index, which change when the rounding of a moved block's vertices
+// splits a face into facets differently.
+struct StableFeature {
+  kernel::Feature::Kind kind = kernel::Feature::Kind::vertex;
+  std::uint32_t part = 0;
+  std::uint64_t id = 0;  // vertex index; (i << 32) | j of an edge's vertices, i < j; input face
+  auto tied() const { return std::tuple(kind, part, id); }
+  friend bool operator<(const StableFeature& x, const StableFeature& y) { return x.tied() < y.tied(); }
+  friend bool operator==(const StableFeature& x, const StableFeature& y) { return x.tied() == y.tied(); }
+};
+
+StableFeature stable(const Block& block, const kernel::Feature& f) {
+  const ConvexPolyhedron& part = block.parts[f.part];
+  switch (f.kind) {
+    case kernel::Feature::Kind::vertex: return {f.kind, f.part, f.index};
+    case kernel::Feature::Kind::edge: {
+      const auto [i, j] = part.edges()[f.index];
+      return {f.kind, f.part, (std::uint64_t{std::min(i, j)} << 32) | std::max(i, j)};
+    }
+    case kernel::Feature::Kind::face: return {f.kind, f.part, part.input_face(f.index)};
+  }
+  return {};
+}
+
+// The block's current index (vertex, edge, or the first facet of the face) of a stable feature;
+// nullopt when it has none (a diagonal of a face split differently now).
+std::optional<std::uint32_t> current_index(const Block& block, const StableFeature& f) {
+  const ConvexPolyhedron& part = block.parts[f.part];
+  switch (f.kind) {
+    case kernel::Feature::Kind::vertex: return static_cast<std::uint32_t>(f.id);
+    case kernel::Feature::Kind::edge:
+      for (std::uint32_t e = 0; e < part.edges().size(); ++e) {
+        const auto [i, j] = part.edges()[e];
+        if (((std::uint64_t{std::min(i, j)} << 32) | std::max(i, j)) == f.id) return e;
+      }
+      return std::nullopt;
+    case kernel::Feature::Kind::face:
+      for (std::uint32_t facet = 0; facet < part.faces().size(); ++facet) {
+        if (part.input_face(facet) == f.id) return facet;
+      }
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+// What identifies a constraint from step to step (§4.2): its pair, its type and its two features.
+using ConstraintKey = std::tuple<std::size_t, std::size_t, int, StableFeature, StableFeature>;
+
+ConstraintKey key_of(std::size_t a, std::size_t b, const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
+  return {a, b, static_cast<int>(c.type), stable(cp, c.cp_feature), stable(tp, c.tp_feature)};
+}
+
+// What the contact list holds of a closed constraint for the next step (§4.2): a vertex of one
+// block on a face of the other (`other` is that face), or a vertex of cp pressed on a vertex of
+// tp along a plane that is no face (an edge pair's plane or the line of the points; `other` is
+// tp's vertex, the normal turns with tp).
+struct Hold {
+  kernel::BlockRole vertex_side = kernel::BlockRole::cp;  // the vertex's block
+  StableFeature vertex;
+  StableFeature other;  // on the other block
+  auto tied() const { return std::tuple(vertex_side, vertex, other); }
+  friend bool operator<(const Hold& x, const Hold& y) { return x.tied() < y.tied(); }
+};
+
+// The vertex and face of a constraint whose plane `source` is a face of one block and whose
+// point on the other block is a vertex; nullopt otherwise.
+std::optional<Hold> vertex_on_face(const Block& cp, const Block& tp, const kernel::ContactConstraint& c,
+                                   const kernel::PlaneSource& source) {
+  using Kind = kernel::PlaneSource::Kind;
+  if (source.kind != Kind::cp_face && source.kind != Kind::tp_face) return std::nullopt;
+  const bool face_on_cp = source.kind == Kind::cp_face;
+  const kernel::Feature& vertex = face_on_cp ? c.tp_feature : c.cp_feature;
+  if (vertex.kind != kernel::Feature::Kind::vertex) return std::nullopt;
+  const kernel::Feature& face_side = face_on_cp ? c.cp_feature : c.tp_feature;
+  const kernel::Feature face{kernel::Feature::Kind::face, face_on_cp ? source.cp_index : source.tp_index, face_side.part};
+  return Hold{face_on_cp ? kernel::BlockRole::tp : kernel::BlockRole::cp, stable(face_on_cp ? tp : cp, vertex),
+              stable(face_on_cp ? cp : tp, face)};
+}
+
+// The hold of a constraint itself: its vertex on its face, or its two vertices; nullopt for an
+// edge-edge or a vertex-edge constraint whose plane is no face.
+std::optional<Hold> own_hold(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
+  if (auto h = vertex_on_face(cp, tp, c, c.plane)) return h;
+  if (c.type != kernel::ConstraintType::vertex_vertex) return std::nullopt;
+  return Hold{kernel::BlockRole::cp, stable(cp, c.cp_feature), stable(tp, c.tp_feature)};
+}
+
+// What a closed constraint holds for the next step: its own hold and, for a vertex-vertex
+// constraint whose plane is a face, the other vertex on each candidate face of the other block.
+// Two vertices that coincide (blocks cut from one region) are then both held, each on the faces
+// of the other block it rests on: the kernel reports such a contact once, from one of the
+// vertices, and the other would have no contact of its own once they part.
+std::vector<Hold> holds_of(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
+  std::vector<Hold> out;
+  const std::optional<Hold> own = own_hold(cp, tp, c);
+  if (!own) return out;
+  out.push_back(*own);
+  if (c.type != kernel::ConstraintType::vertex_vertex || own->other.kind != kernel::Feature::Kind::face) return out;
+  for (const kernel::CandidatePlane& candidate : c.candidates) {
+    const std::optional<Hold> h = vertex_on_face(cp, tp, c, candidate.source);
+    if (h && h->vertex_side != own->vertex_side) out.push_back(*h);
+  }
+  return out;
+}
+
 // The constraint of a hold with the blocks where they are now; nullopt once the vertex has left
 // (the kernel then decides its contacts afresh).
-//   Vertex on face: the face's current plane, the vertex's distance from it as the gap and its
-//   foot on the plane as the face's point; left when farther than `range` from the plane or
-//   outside the face by more than `range`.
+//   Vertex on face: the plane of the face as given (its current vertices), the vertex's distance
+//   from it as the gap and its foot on the plane as the face's point; left when farther than
+//   `range` from the plane or outside the face by more than `range`.
 //   Two vertices: `normal` (unit, from cp towards tp), `from`'s plane source; left when the
 //   vertices are farther apart than `range`.
 std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Block& tp, const Hold& h,
@@ -184,14 +239,17 @@ std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Blo
   const bool vertex_on_cp = h.vertex_side == kernel::BlockRole::cp;
   const Block& vertex_block = vertex_on_cp ? cp : tp;
   const Block& other_block = vertex_on_cp ? tp : cp;
-  const Eigen::Vector3d v = vec(vertex_block.parts[h.vertex.part][h.vertex.index]);
+  const std::optional<std::uint32_t> other = current_index(other_block, h.other);
+  if (!other) return std::nullopt;
+  const auto vertex_index = static_cast<std::uint32_t>(h.vertex.id);
+  const Eigen::Vector3d v = vec(vertex_block.parts[h.vertex.part][vertex_index]);
   kernel::ContactConstraint c;
   c.entering = h.vertex_side;
-  (vertex_on_cp ? c.cp_feature : c.tp_feature) = h.vertex;
-  (vertex_on_cp ? c.tp_feature : c.cp_feature) = h.other;
+  (vertex_on_cp ? c.cp_feature : c.tp_feature) = {kernel::Feature::Kind::vertex, vertex_index, h.vertex.part};
+  (vertex_on_cp ? c.tp_feature : c.cp_feature) = {h.other.kind, *other, h.other.part};
   Eigen::Vector3d n = normal;
   if (h.other.kind == kernel::Feature::Kind::vertex) {
-    const Eigen::Vector3d w = vec(other_block.parts[h.other.part][h.other.index]);
+    const Eigen::Vector3d w = vec(other_block.parts[h.other.part][*other]);
     if ((w - v).norm() > range) return std::nullopt;
     c.type = kernel::ConstraintType::vertex_vertex;
     c.entering = from.entering;
@@ -201,7 +259,7 @@ std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Blo
     c.gap = (w - v).dot(n);
   } else {
     const ConvexPolyhedron& part = other_block.parts[h.other.part];
-    const ConvexPolyhedron::Face& loop = part.faces()[h.other.index];
+    const ConvexPolyhedron::Face& loop = part.input_faces()[h.other.id];
     const Eigen::Vector3d outward = doubled_vector_area(part, loop).normalized();
     const double distance = (v - vec(part[loop[0]])).dot(outward);
     if (std::abs(distance) > range) return std::nullopt;
@@ -215,8 +273,8 @@ std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Blo
     c.point_cp = point(vertex_on_cp ? v : foot);
     c.point_tp = point(vertex_on_cp ? foot : v);
     n = vertex_on_cp ? Eigen::Vector3d(-outward) : outward;
-    c.plane = vertex_on_cp ? kernel::PlaneSource{kernel::PlaneSource::Kind::tp_face, 0, h.other.index}
-                           : kernel::PlaneSource{kernel::PlaneSource::Kind::cp_face, h.other.index, 0};
+    c.plane = vertex_on_cp ? kernel::PlaneSource{kernel::PlaneSource::Kind::tp_face, 0, *other}
+                           : kernel::PlaneSource{kernel::PlaneSource::Kind::cp_face, *other, 0};
     c.gap = distance;
   }
   c.normal = point(n);
@@ -243,20 +301,24 @@ bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactCons
 }
 
 // A closed edge-edge constraint with the blocks where they are now: the closest points of the two
-// edges' lines, the normal their cross product turned to the side of `from`'s; nullopt when the
-// edges have turned nearly parallel, their lines are farther apart than `range`, a closest point
-// is off its edge by more than `range` (the crossing has left the edges), or the gap differs
-// from `end_gap`, the one the last solve left, by more than a quarter of the range (half a
-// step's largest motion: the lines' closest points have jumped, as they do where the crossing
-// runs off an edge's end, and the distance of the lines there is no penetration). Held so, a
-// crossing near the end of an edge does not come and go with the rounding of its parameters.
-std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Block& tp,
+// edges' lines (the edges `key` names), the normal their cross product turned to the side of
+// `from`'s; nullopt when an edge is gone (a diagonal of a face split differently now), the edges
+// have turned nearly parallel, their lines are farther apart than `range`, a closest point is
+// off its edge by more than `range` (the crossing has left the edges), or the gap differs from
+// `end_gap`, the one the last solve left, by more than a quarter of the range (half a step's
+// largest motion: the lines' closest points have jumped, as they do where the crossing runs off
+// an edge's end, and the distance of the lines there is no penetration). Held so, a crossing
+// near the end of an edge does not come and go with the rounding of its parameters.
+std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Block& tp, const ConstraintKey& key,
                                                        const kernel::ContactConstraint& from, double end_gap,
                                                        double range) {
-  const ConvexPolyhedron& x = cp.parts[from.cp_feature.part];
-  const ConvexPolyhedron& y = tp.parts[from.tp_feature.part];
-  const auto [i, j] = x.edges()[from.cp_feature.index];
-  const auto [k, l] = y.edges()[from.tp_feature.index];
+  const StableFeature &e = std::get<3>(key), &g = std::get<4>(key);
+  const std::optional<std::uint32_t> e_index = current_index(cp, e), g_index = current_index(tp, g);
+  if (!e_index || !g_index) return std::nullopt;
+  const ConvexPolyhedron& x = cp.parts[e.part];
+  const ConvexPolyhedron& y = tp.parts[g.part];
+  const auto [i, j] = x.edges()[*e_index];
+  const auto [k, l] = y.edges()[*g_index];
   const Eigen::Vector3d p = vec(x[i]), u = vec(x[j]) - p, q = vec(y[k]), w = vec(y[l]) - q;
   Eigen::Vector3d n = u.cross(w);
   if (n.norm() < parallel_edges * u.norm() * w.norm()) return std::nullopt;
@@ -274,6 +336,8 @@ std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Bl
   const double gap = (on_tp - on_cp).dot(n);
   if (std::abs(gap) > range || std::abs(gap - end_gap) > 0.25 * range) return std::nullopt;
   kernel::ContactConstraint c = from;
+  c.cp_feature.index = *e_index;
+  c.tp_feature.index = *g_index;
   c.point_cp = point(on_cp);
   c.point_tp = point(on_tp);
   c.normal = point(n);
@@ -284,25 +348,11 @@ std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Bl
   return c;
 }
 
-// What identifies a constraint from step to step (§4.2): its pair and its two features.
-using ConstraintKey = std::tuple<std::size_t, std::size_t, int, int, std::uint32_t, std::uint32_t, int,
-                                 std::uint32_t, std::uint32_t>;
-
-ConstraintKey key_of(std::size_t a, std::size_t b, const kernel::ContactConstraint& c) {
-  return {a,
-          b,
-          static_cast<int>(c.type),
-          static_cast<int>(c.cp_feature.kind),
-          c.cp_feature.index,
-          c.cp_feature.part,
-          static_cast<int>(c.tp_feature.kind),
-          c.tp_feature.index,
-          c.tp_feature.part};
-}
-
 struct Constraint {
   std::size_t a = 0, b = 0;  // blocks: a the kernel's cp, b its tp
   kernel::ContactConstraint geometry;
+  ConstraintKey key;        // with the blocks as they were when it was found
+  std::vector<Hold> holds;  // what it holds for the next step when it ends closed
   detail::ContactLaw3d law;
   detail::ContactKinematics3d kinematics;
   detail::ContactState3d state;     // of the start of the step, then of the iteration
@@ -344,7 +394,7 @@ struct Dda3d::Impl {
     double depth = 0.0;
     std::size_t a = 0, b = 0;
   } deepest;
-  // Wall seconds spent so far in detection and in the solves (assembly and factorization).
+  // Wall seconds spent so far in detection and in the linear solves (factorization or CG).
   mutable struct {
     double detection = 0.0, solve = 0.0;
   } timing;
@@ -583,16 +633,16 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
   std::set<ConstraintKey> continuing, crossing_keys;
   for (const Constraint& k : earlier) {
     if (k.state.mode == detail::ContactMode::open) continue;
-    continuing.insert(key_of(a, b, k.geometry));
+    continuing.insert(k.key);
     for (const ContactVertex& v : vertices_of(k.geometry)) supported.insert(v);
     if (k.geometry.type == kernel::ConstraintType::edge_edge) {
-      if (auto c = held_crossing(blocks[a], blocks[b], k.geometry, k.update.gap, range)) {
+      if (auto c = held_crossing(blocks[a], blocks[b], k.key, k.geometry, k.update.gap, range)) {
         crossings.push_back(std::move(*c));
       }
       continue;
     }
     const Eigen::Vector3d normal = blocks[b].rotation * k.normal_in_tp;
-    for (const Hold& hold : holds_of(k.geometry)) {
+    for (const Hold& hold : k.holds) {
       if (held.contains(hold)) continue;
       if (auto c = held_contact(blocks[a], blocks[b], hold, k.geometry, normal, range)) held.emplace(hold, std::move(*c));
     }
@@ -600,12 +650,13 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
   for (const auto& entry : held) {
     for (const ContactVertex& v : vertices_of(entry.second)) held_vertices.insert(v);
   }
-  for (const kernel::ContactConstraint& c : crossings) crossing_keys.insert(key_of(a, b, c));
+  for (const kernel::ContactConstraint& c : crossings) crossing_keys.insert(key_of(a, b, blocks[a], blocks[b], c));
   std::erase_if(found, [&](const kernel::ContactConstraint& c) {
-    if (crossing_keys.contains(key_of(a, b, c))) return true;
-    if (const std::optional<Hold> hold = own_hold(c); hold && held.contains(*hold)) return true;
+    const ConstraintKey key = key_of(a, b, blocks[a], blocks[b], c);
+    if (crossing_keys.contains(key)) return true;
+    if (const std::optional<Hold> hold = own_hold(blocks[a], blocks[b], c); hold && held.contains(*hold)) return true;
     if (c.gap > 0.0) return false;
-    const bool is_new = !continuing.contains(key_of(a, b, c));
+    const bool is_new = !continuing.contains(key);
     for (const ContactVertex& v : vertices_of(c)) {
       if (held_vertices.contains(v) || (is_new && supported.contains(v))) return true;
     }
@@ -622,10 +673,10 @@ std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::size_t a, std
                                                              std::span<const Constraint> earlier,
                                                              const std::vector<kernel::ContactConstraint>& found) const {
   std::set<ConstraintKey> keys;
-  for (const kernel::ContactConstraint& c : found) keys.insert(key_of(a, b, c));
+  for (const kernel::ContactConstraint& c : found) keys.insert(key_of(a, b, blocks[a], blocks[b], c));
   std::vector<const Constraint*> out;
   for (const Constraint& k : earlier) {
-    if (k.state.mode != detail::ContactMode::open && !keys.contains(key_of(a, b, k.geometry))) {
+    if (k.state.mode != detail::ContactMode::open && !keys.contains(k.key)) {
       out.push_back(&k);
     }
   }
@@ -713,6 +764,8 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.a = a;
     k.b = b;
     k.geometry = c;
+    k.key = key_of(a, b, ba, bb, c);
+    k.holds = holds_of(ba, bb, c);
     k.law = pair;
     double area = 0.0;
     if (c.type == kernel::ConstraintType::vertex_face) {
@@ -723,7 +776,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
-    if (const auto it = previous.find(key_of(a, b, c)); it != previous.end()) {
+    if (const auto it = previous.find(k.key); it != previous.end()) {
       k.state = it->second->state;
     } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
       // The transferred spring keeps its normal force: its offset moves with the gap.
@@ -761,7 +814,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
 std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
   const auto started = std::chrono::steady_clock::now();
   std::map<ConstraintKey, const Constraint*> previous;
-  for (const Constraint& c : constraints) previous.emplace(key_of(c.a, c.b, c.geometry), &c);
+  for (const Constraint& c : constraints) previous.emplace(c.key, &c);
   // The last list is built pair by pair, so each pair's constraints are consecutive in it.
   std::map<std::pair<std::size_t, std::size_t>, std::span<const Constraint>> by_pair;
   for (std::size_t i = 0; i < constraints.size();) {
@@ -874,12 +927,26 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
   }
   Eigen::SparseMatrix<double> a(n, n);
   a.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
-  if (ldlt.info() != Eigen::Success) {
+  const auto started = std::chrono::steady_clock::now();
+  bool solved = false;
+  if (params.solver == Solver3d::ldlt) {
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
+    if (ldlt.info() == Eigen::Success) d = ldlt.solve(rhs), solved = true;
+  } else {
+    // K is symmetric positive definite (the inertia term alone is): CG with Eigen's diagonal
+    // preconditioner, started from the last solution, to a residual of 1e-12 of the load.
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(a);
+    cg.setTolerance(1e-12);
+    cg.setMaxIterations(10 * n);
+    const Eigen::VectorXd guess = d.size() == n && d.allFinite() ? d : Eigen::VectorXd::Zero(n);
+    d = cg.solveWithGuess(rhs, guess);
+    solved = cg.info() == Eigen::Success;
+  }
+  timing.solve += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (!solved) {
     d = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  d = ldlt.solve(rhs);
   numerical = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const Block& b = blocks[i];
@@ -988,6 +1055,8 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
   last.closed = static_cast<std::size_t>(std::count_if(constraints.begin(), constraints.end(), [](const Constraint& k) {
     return k.state.mode != detail::ContactMode::open;
   }));
+  last.detection_seconds = timing.detection;
+  last.solve_seconds = timing.solve;
 }
 
 // Moves block i by the increments `di` of a solve: its stress, rotation, parts and moments.

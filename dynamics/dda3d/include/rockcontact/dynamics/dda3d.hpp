@@ -27,7 +27,7 @@
 //      M = ρ ∫ TᵀT dV, K_e = V C on the strain unknowns, F_g the gravity load, σ_n the stress at
 //      t_n, and K_c, F_c the penalty terms of the closed constraints (eq. 24 normal, eq. 29
 //      tangent locked, eq. 32 the explicit friction force of a sliding one); solved by
-//      Eigen::SimplicialLDLT;
+//      Eigen::SimplicialLDLT (or preconditioned CG, Dda3dParams::solver);
 //   3. the open-close iteration (§4.3): every constraint's mode is re-decided from the solution
 //      (contact_terms3d.hpp: Table 2 with the project's elastoplastic tangential spring); while a
 //      contact changes between open and closed, or a locked one gives way to sliding (the solve
@@ -120,6 +120,11 @@ struct ContactLaw3d {
   std::vector<Interface3d> interfaces;  // at most one per pair of groups
 };
 
+// The sparse solver of the global equation: Eigen's SimplicialLDLT (a direct factorization each
+// solve) or ConjugateGradient (diagonal preconditioner, 1e-12 relative residual, started from
+// the last solution). bench/dda3d_stack.cpp measures which wins.
+enum class Solver3d { ldlt, cg };
+
 struct Dda3dParams {
   double dt = 1.0e-3;                         // s, the largest step, finite > 0
   std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s²
@@ -128,6 +133,7 @@ struct Dda3dParams {
   double min_dt_ratio = 1.0e-6;               // the step may shrink to dt times this, in (0, 1)
   bool initial_equilibrium = true;            // settle the resting blocks first (header)
   bool static_analysis = false;               // velocities zeroed after every step (header)
+  Solver3d solver = Solver3d::ldlt;
 };
 
 struct Block3dState {
@@ -176,6 +182,8 @@ struct Step3dStats {
   std::size_t cuts = 0;                  // step cuts since the start
   std::size_t constraints = 0;           // in the contact list
   std::size_t closed = 0;                // of which closed
+  double detection_seconds = 0.0;        // wall s in contact detection since the start
+  double solve_seconds = 0.0;            // wall s in the linear solves since the start
 };
 
 // The run cannot go on meaningfully; what() says why and with which numbers.
