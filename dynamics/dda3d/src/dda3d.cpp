@@ -116,7 +116,9 @@ struct Block {
   detail::Matrix6 elasticity = detail::Matrix6::Zero();
   Box box;
 
-  Eigen::MatrixXd mass_matrix() const { return detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
+  Eigen::MatrixXd mass_matrix;          // dof x dof, of the current moments
+
+  void refresh_mass_matrix() { mass_matrix = detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
 
 // A feature that stays the same feature from step to step (convex_polyhedron.hpp, "Feature
@@ -458,6 +460,7 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
     if (!(b.moments.volume > 0.0)) throw std::invalid_argument(name + ": zero volume");
     b.mass = m.density * b.moments.volume;
     b.dof = spec.fixed ? 0 : spec.rigid ? detail::rigid_dof3d : detail::dof3d;
+    b.refresh_mass_matrix();
     b.offset = unknowns;
     unknowns += static_cast<std::size_t>(b.dof);
     b.velocity = Eigen::VectorXd::Zero(b.dof);
@@ -882,17 +885,15 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
     }
   };
   std::vector<Eigen::MatrixXd> springs(blocks.size());  // K_e per block, for the dissipation
+  std::vector<Eigen::MatrixXd> diagonal(blocks.size());  // each block's diagonal block of K
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const Block& b = blocks[i];
     if (b.dof == 0) continue;
-    const Eigen::MatrixXd m = b.mass_matrix();
-    Eigen::MatrixXd k = (2.0 / (h * h)) * m;
-    Eigen::VectorXd f = detail::gravity_load(b.mass, g).head(b.dof) + (2.0 / h) * m * b.velocity;
+    Eigen::MatrixXd& k = diagonal[i];
+    k = (2.0 / (h * h)) * b.mass_matrix;
+    Eigen::VectorXd f = detail::gravity_load(b.mass, g).head(b.dof) + (2.0 / h) * b.mass_matrix * b.velocity;
     if (settling != nullptr) {
-      if (!(*settling)[i]) {
-        scatter(b.offset, b.offset, k);
-        continue;
-      }
+      if (!(*settling)[i]) continue;
       k *= settle_regularization;
       f = detail::gravity_load(b.mass, g).head(b.dof);
     }
@@ -902,28 +903,57 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
       k += springs[i];
       f.tail<6>() -= b.moments.volume * b.stress;
     }
-    scatter(b.offset, b.offset, k);
     rhs.segment(static_cast<Eigen::Index>(b.offset), b.dof) += f;
   }
-  for (std::size_t c = 0; c < list.size(); ++c) {
-    const Constraint& k = list[c];
-    const Block &ba = blocks[k.a], &bb = blocks[k.b];
-    Eigen::MatrixXd kii = Eigen::MatrixXd::Zero(ba.dof, ba.dof), kij = Eigen::MatrixXd::Zero(ba.dof, bb.dof),
-                    kjj = Eigen::MatrixXd::Zero(bb.dof, bb.dof);
-    Eigen::VectorXd fi = Eigen::VectorXd::Zero(ba.dof), fj = Eigen::VectorXd::Zero(bb.dof);
-    detail::add_contact_terms(k.kinematics, k.state, k.law, {kii, kij, kjj, fi, fj});
+  // The contacts' terms, per pair of blocks (the list's runs of one pair), computed on the
+  // worker threads into their own slots and added in pair order: the matrix does not depend on
+  // the number of threads.
+  struct PairTerms {
+    std::size_t a = 0, b = 0;
+    Eigen::MatrixXd kii, kij, kjj;
+    Eigen::VectorXd fi, fj;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> runs;  // [first, last) in the list
+  for (std::size_t c = 0; c < list.size();) {
+    std::size_t end = c + 1;
+    while (end < list.size() && list[end].a == list[c].a && list[end].b == list[c].b) ++end;
+    runs.emplace_back(c, end);
+    c = end;
+  }
+  std::vector<PairTerms> terms(runs.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(runs.size()); ++r) {
+    const auto [first, last_one] = runs[static_cast<std::size_t>(r)];
+    PairTerms& t = terms[static_cast<std::size_t>(r)];
+    t.a = list[first].a;
+    t.b = list[first].b;
+    const int ni = blocks[t.a].dof, nj = blocks[t.b].dof;
+    t.kii = Eigen::MatrixXd::Zero(ni, ni);
+    t.kij = Eigen::MatrixXd::Zero(ni, nj);
+    t.kjj = Eigen::MatrixXd::Zero(nj, nj);
+    t.fi = Eigen::VectorXd::Zero(ni);
+    t.fj = Eigen::VectorXd::Zero(nj);
+    for (std::size_t c = first; c < last_one; ++c) {
+      detail::add_contact_terms(list[c].kinematics, list[c].state, list[c].law, {t.kii, t.kij, t.kjj, t.fi, t.fj});
+    }
+  }
+  for (const PairTerms& t : terms) {
+    const Block &ba = blocks[t.a], &bb = blocks[t.b];
     if (ba.dof > 0) {
-      scatter(ba.offset, ba.offset, kii);
-      rhs.segment(static_cast<Eigen::Index>(ba.offset), ba.dof) += fi;
+      diagonal[t.a] += t.kii;
+      rhs.segment(static_cast<Eigen::Index>(ba.offset), ba.dof) += t.fi;
     }
     if (bb.dof > 0) {
-      scatter(bb.offset, bb.offset, kjj);
-      rhs.segment(static_cast<Eigen::Index>(bb.offset), bb.dof) += fj;
+      diagonal[t.b] += t.kjj;
+      rhs.segment(static_cast<Eigen::Index>(bb.offset), bb.dof) += t.fj;
     }
     if (ba.dof > 0 && bb.dof > 0) {
-      scatter(ba.offset, bb.offset, kij);
-      scatter(bb.offset, ba.offset, kij.transpose());
+      scatter(ba.offset, bb.offset, t.kij);
+      scatter(bb.offset, ba.offset, t.kij.transpose());
     }
+  }
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (blocks[i].dof > 0) scatter(blocks[i].offset, blocks[i].offset, diagonal[i]);
   }
   Eigen::SparseMatrix<double> a(n, n);
   a.setFromTriplets(triplets.begin(), triplets.end());
@@ -1066,6 +1096,7 @@ void Dda3d::Impl::move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& d
   b.rotation = detail::accumulate_rotation(b.rotation, di.segment<3>(3));
   b.parts = detail::moved_parts(b.parts, detail::step_map(b.moments.centroid, di));
   b.moments = detail::central_moments3d(b.parts);
+  b.refresh_mass_matrix();
   b.box = box_of(b.parts);
   refresh_state(i);
 }
@@ -1151,7 +1182,7 @@ Energies3d Dda3d::energies() const {
   const Eigen::Vector3d g(s.params.gravity[0], s.params.gravity[1], s.params.gravity[2]);
   for (const Block& b : s.blocks) {
     if (b.dof == 0) continue;
-    e.kinetic += 0.5 * b.velocity.dot(b.mass_matrix() * b.velocity);
+    e.kinetic += 0.5 * b.velocity.dot(b.mass_matrix * b.velocity);
     e.gravitational -= b.mass * g.dot(b.moments.centroid - b.reference_centroid);
     if (b.dof == detail::dof3d) {
       e.strain += 0.5 * b.moments.volume * b.stress.dot(b.elasticity.ldlt().solve(b.stress));
