@@ -94,6 +94,8 @@ void check_contact_law3d(const ContactLaw3d& law) {
           law.cohesion);
   require(std::isfinite(law.tensile_strength) && law.tensile_strength >= 0.0, "tensile_strength",
           "finite and >= 0 (Pa)", law.tensile_strength);
+  require(std::isfinite(law.gap_tolerance) && law.gap_tolerance >= 0.0, "gap_tolerance", "finite and >= 0 (m)",
+          law.gap_tolerance);
 }
 
 ContactKinematics3d contact_kinematics(const ContactSide3d& cp, const ContactSide3d& tp,
@@ -144,7 +146,8 @@ ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactSt
   out.gap = kin.gap + n.dot(relative);  // eq. 21
   const bool was_closed = state.mode != ContactMode::open;
   const bool closed =
-      was_closed ? law.kn * (out.gap - state.offset) <= law.tensile_strength * kin.area : out.gap < state.offset;
+      was_closed ? law.kn * (out.gap - state.offset - law.gap_tolerance) <= law.tensile_strength * kin.area
+                 : out.gap < state.offset - law.gap_tolerance;
   if (!closed) {
     out.sliding_direction = unit_or(tangential(relative, n), state.sliding_direction);
     return out;

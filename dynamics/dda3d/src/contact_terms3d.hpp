@@ -27,9 +27,12 @@
 //
 // The mode after a solve (Table 2, §2.4 method 3; the table itself was lost in the text of the
 // seed and is rebuilt from the prose and the open-close check of Shi's DDA):
-//   open   -> closed (locked) when d1 < offset, the spring then enters the next iteration;
+//   open   -> closed (locked) when d1 < offset - tol, the spring then enters the next iteration;
 //   closed -> open when the normal spring's tension kn (d1 - offset) exceeds the tensile
-//             strength σt A (with σt = 0: when d1 > offset);
+//             strength σt A + kn tol (with σt = 0: when d1 > offset + tol);
+// tol = ContactLaw3d::gap_tolerance, a hysteresis (0 in the steps; the initial equilibrium's
+// static solve uses 1e-9 of the scene's size) so that a contact at exact touch carrying no load
+// does not open and close from one iteration to the next.
 //   closed -> locked or sliding by the Mohr-Coulomb test on the tangential spring: the trial
 //             stretch s = P (r_acc + Δr) is kept when kt |s| <= tan φ max(fn, 0) + c A, and is
 //             otherwise stretched only to that cap along s (sliding), never reset.
@@ -75,6 +78,7 @@ struct ContactLaw3d {
   double friction_angle_deg = 0.0;  // φ, degrees, in [0, 90)
   double cohesion = 0.0;            // c, Pa, finite >= 0
   double tensile_strength = 0.0;    // σt, Pa, finite >= 0
+  double gap_tolerance = 0.0;       // m, >= 0: the open-close decision's hysteresis (below)
 };
 
 inline ContactLaw3d default_contact_law3d() { return {}; }

@@ -39,6 +39,11 @@ constexpr double step_growth = 1.5;
 // (of the scene's size) up to which blocks count as resting on each other at the start.
 constexpr double settle_regularization = 1.0e-9;
 constexpr double resting_gap = 1.0e-6;
+// The initial equilibrium's open-close hysteresis, of the scene's size (contact_terms3d.hpp):
+// contacts at exact touch that carry no load (the sides of stacked blocks) otherwise open and
+// close by 1e-8 m from one iteration of the static solve to the next. (Not in the dynamic steps:
+// there it changed the toppling scene's course, a motion that hinges on such contacts.)
+constexpr double open_close_tolerance = 1.0e-9;
 // Contact transfer (detect): the largest angle between the normals of a vanished constraint and
 // the new one that continues it, radians (15 degrees).
 constexpr double transfer_angle = std::numbers::pi / 12.0;
@@ -516,6 +521,7 @@ void Dda3d::Impl::settle() {
   std::vector<Constraint> list = constraints;
   for (Constraint& k : list) {
     k.state.mode = k.kinematics.gap <= resting ? detail::ContactMode::locked : detail::ContactMode::open;
+    k.law.gap_tolerance = open_close_tolerance * size;
   }
   Eigen::VectorXd d;
   double unused = 0.0;
@@ -539,6 +545,15 @@ void Dda3d::Impl::settle() {
         k.update.mode = detail::ContactMode::locked;
         k.update.shear = trial - trial.dot(n) * n;
         k.update.tangential_force = -k.law.kt * k.update.shear;
+      }
+      // After half the iterations a closed contact stays closed: contacts at exact touch that
+      // carry no load (the sides of stacked blocks) can alternate between a slight tension
+      // closed and a slight penetration open; kept closed they start the run with that tension
+      // (1e-8 m of spring), which the first step releases.
+      if (iteration > params.max_open_close / 2 && k.state.mode != detail::ContactMode::open &&
+          k.update.mode == detail::ContactMode::open) {
+        k.update.mode = detail::ContactMode::locked;
+        k.update.normal_force = -k.law.kn * (k.update.gap - k.state.offset);
       }
       changed = changed || (k.state.mode == detail::ContactMode::open) != (k.update.mode == detail::ContactMode::open);
     }
@@ -799,7 +814,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     // spring would otherwise pull the blocks back in the first iteration and count energy
     // it never stored.
     if (k.state.mode != detail::ContactMode::open &&
-        pair.kn * (k.kinematics.gap - k.state.offset) > pair.tensile_strength * k.kinematics.area) {
+        pair.kn * (k.kinematics.gap - k.state.offset - pair.gap_tolerance) > pair.tensile_strength * k.kinematics.area) {
       k.state = detail::ContactState3d{};
     }
     k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
