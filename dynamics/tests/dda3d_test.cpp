@@ -42,6 +42,14 @@ std::vector<Block3dSpec> cube_on_slab(double lift = 0.0) {
 // gravity turns instead.
 std::array<double, 3> tilted_gravity(double theta) { return {g * std::sin(theta), 0.0, -g * std::cos(theta)}; }
 
+ContactLaw3d penalty(double kn, double kt, double friction_angle_deg) {
+  ContactLaw3d law;
+  law.kn = kn;
+  law.kt = kt;
+  law.friction_angle_deg = friction_angle_deg;
+  return law;
+}
+
 }  // namespace
 
 // No contact: the constant-acceleration step of DDA integrates a constant force exactly, so
@@ -95,10 +103,7 @@ BOOST_AUTO_TEST_CASE(free_spin_keeps_volume_and_rate) {
 // springs; the implicit step damps the bounce of the first steps, and after 0.2 s the
 // penetration is within 1 % of the static value and the cube is still.
 BOOST_AUTO_TEST_CASE(cube_rests_at_the_static_penetration) {
-  ContactLaw3d law;
-  law.kn = 1.0e9;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 30.0;
+  const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.initial_equilibrium = false;
@@ -120,10 +125,7 @@ BOOST_AUTO_TEST_CASE(cube_rests_at_the_static_penetration) {
 // stays there (within 1e-6 of the sinking over 0.1 s: no bounce to damp). A cube 1 m above the
 // slab does not rest on it and is left where it is.
 BOOST_AUTO_TEST_CASE(initial_equilibrium_starts_at_rest_on_loaded_springs) {
-  ContactLaw3d law;
-  law.kn = 1.0e9;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 30.0;
+  const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
   const double expected = density * 1.0 * g / (4.0 * law.kn);
@@ -142,10 +144,7 @@ BOOST_AUTO_TEST_CASE(initial_equilibrium_starts_at_rest_on_loaded_springs) {
 // without bouncing, its height never rising, its velocity zero after every step, and ends at
 // the static sinking m g / (4 kn) within 1 %.
 BOOST_AUTO_TEST_CASE(static_analysis_settles_without_bouncing) {
-  ContactLaw3d law;
-  law.kn = 1.0e9;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 30.0;
+  const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   Dda3dParams params;
   params.dt = 1.0e-2;
   params.static_analysis = true;
@@ -167,10 +166,7 @@ BOOST_AUTO_TEST_CASE(static_analysis_settles_without_bouncing) {
 BOOST_AUTO_TEST_CASE(cube_slides_on_an_incline_as_the_closed_form) {
   const double theta = 30.0 * std::numbers::pi / 180.0;
   for (const double phi_deg : {0.0, 20.0}) {
-    ContactLaw3d law;
-    law.kn = 1.0e10;
-    law.kt = 1.0e9;
-    law.friction_angle_deg = phi_deg;
+    const ContactLaw3d law = penalty(1.0e10, 1.0e9, phi_deg);
     Dda3dParams params;
     params.dt = 1.0e-3;
     params.gravity = tilted_gravity(theta);
@@ -184,10 +180,7 @@ BOOST_AUTO_TEST_CASE(cube_slides_on_an_incline_as_the_closed_form) {
                                            << " m");
     BOOST_TEST(std::fabs(moved - expected) <= 0.01 * expected);
   }
-  ContactLaw3d law;
-  law.kn = 1.0e10;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 31.0;
+  const ContactLaw3d law = penalty(1.0e10, 1.0e9, 31.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.gravity = tilted_gravity(theta);
@@ -203,10 +196,7 @@ BOOST_AUTO_TEST_CASE(cube_slides_on_an_incline_as_the_closed_form) {
 // open-close decisions agree).
 BOOST_AUTO_TEST_CASE(cg_solves_as_ldlt) {
   const double theta = 30.0 * std::numbers::pi / 180.0;
-  ContactLaw3d law;
-  law.kn = 1.0e10;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 20.0;
+  const ContactLaw3d law = penalty(1.0e10, 1.0e9, 20.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.gravity = tilted_gravity(theta);
@@ -225,10 +215,7 @@ BOOST_AUTO_TEST_CASE(cg_solves_as_ldlt) {
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of
 // the energy released leaves room for the rounding of 300 sparse solves.
 BOOST_AUTO_TEST_CASE(energy_balance_with_numerical_dissipation) {
-  ContactLaw3d law;
-  law.kn = 1.0e9;
-  law.kt = 1.0e9;
-  law.friction_angle_deg = 30.0;
+  const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
   Dda3d sim(cube_on_slab(0.05), law, params);
