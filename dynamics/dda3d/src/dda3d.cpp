@@ -1005,16 +1005,19 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
 // is not finite.
 bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
                           double& numerical) const {
+  // The increments of a block in d, a view (empty for a fixed block).
+  const auto increments = [&](const Block& b) { return d.segment(static_cast<Eigen::Index>(b.offset), b.dof); };
   for (iterations = 1; iterations <= params.max_open_close; ++iterations) {
     solve(list, d, numerical);
     if (!d.allFinite()) return false;
+    // Each constraint's decision is its own: evaluated on the worker threads; `changed` is an
+    // or over them, the same whatever the order.
     bool changed = false;
-    for (Constraint& k : list) {
-      const Block &ba = blocks[k.a], &bb = blocks[k.b];
-      const Eigen::VectorXd di = ba.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(ba.offset), ba.dof))
-                                            : Eigen::VectorXd();
-      const Eigen::VectorXd dj = bb.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(bb.offset), bb.dof))
-                                            : Eigen::VectorXd();
+#pragma omp parallel for schedule(static) reduction(|| : changed)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(list.size()); ++c) {
+      Constraint& k = list[static_cast<std::size_t>(c)];
+      const auto di = increments(blocks[k.a]);
+      const auto dj = increments(blocks[k.b]);
       k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
       const bool was_closed = k.state.mode != detail::ContactMode::open;
       const bool is_closed = k.update.mode != detail::ContactMode::open;
@@ -1041,12 +1044,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // stores and the slip dissipates over the step, less the work of the end-of-step force
       // the scheme applies, -(U_1 - U_0) - W_slip - f_1 . Δr per constraint.
       for (const Constraint& k : list) {
-        const Block &ba = blocks[k.a], &bb = blocks[k.b];
-        const Eigen::VectorXd di = ba.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(ba.offset), ba.dof))
-                                              : Eigen::VectorXd();
-        const Eigen::VectorXd dj = bb.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(bb.offset), bb.dof))
-                                              : Eigen::VectorXd();
-        const Eigen::Vector3d relative = k.kinematics.t_j * dj - k.kinematics.t_i * di;
+        const Eigen::Vector3d relative = k.kinematics.t_j * increments(blocks[k.b]) - k.kinematics.t_i * increments(blocks[k.a]);
         const bool closed = k.update.mode != detail::ContactMode::open;
         const Eigen::Vector3d end_force =
             closed ? Eigen::Vector3d(k.update.normal_force * k.kinematics.normal + k.update.tangential_force)
