@@ -191,6 +191,35 @@ BOOST_AUTO_TEST_CASE(cube_slides_on_an_incline_as_the_closed_form) {
   BOOST_TEST(moved < 1.0e-3);
 }
 
+// Cohesion acts through the contact area: the unit cube's bottom face on the slab, 1 m², shared
+// by its four corners. On 30° with φ = 20° the cube needs a cohesive force of
+// m g (sin θ - cos θ tan φ) = 4 532 N to stay: with c = 5 000 Pa it moves less than 1 mm in 1 s;
+// with c = 4 000 Pa it slides with a = g (sin θ - cos θ tan φ) - c A / m = 0.2125 m/s², ½ a t²
+// within 1 % after 1 s (the springs' stretch, ~1e-5 m, is in the tolerance).
+BOOST_AUTO_TEST_CASE(cohesion_acts_through_the_contact_area) {
+  const double theta = 30.0 * std::numbers::pi / 180.0, phi = 20.0 * std::numbers::pi / 180.0;
+  const double m = density * 1.0;
+  const double needed = m * g * (std::sin(theta) - std::cos(theta) * std::tan(phi));
+  BOOST_TEST(std::fabs(needed - 4532.0) < 1.0);
+  for (const double c : {5000.0, 4000.0}) {
+    ContactLaw3d law = penalty(1.0e10, 1.0e9, 20.0);
+    law.cohesion = c;
+    Dda3dParams params;
+    params.dt = 1.0e-3;
+    params.gravity = tilted_gravity(theta);
+    Dda3d sim(cube_on_slab(), law, params);
+    while (sim.time() < 1.0 - 1e-9) sim.step();
+    const double moved = sim.blocks()[1].centroid.x, t = sim.time();
+    BOOST_TEST_MESSAGE("cohesion " << c << " Pa: moved " << moved << " m in " << t << " s");
+    if (c > needed) {
+      BOOST_TEST(std::fabs(moved) < 1e-3);
+    } else {
+      const double expected = 0.5 * ((needed - c * 1.0) / m) * t * t;
+      BOOST_TEST(std::fabs(moved - expected) <= 0.01 * expected);
+    }
+  }
+}
+
 // The CG solver gives the LDLT solution: the cube sliding on the incline (φ = 20°) for 0.5 s
 // ends at the same place to 1e-9 m (CG stops at a residual of 1e-12 of the load, and the
 // open-close decisions agree).

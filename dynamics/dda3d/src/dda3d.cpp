@@ -91,10 +91,6 @@ Eigen::Vector3d doubled_vector_area(const ConvexPolyhedron& part, const ConvexPo
   return sum;
 }
 
-double face_area(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& loop) {
-  return 0.5 * doubled_vector_area(part, loop).norm();
-}
-
 // A vertex of one block of a pair: its block's role, its part and its index there.
 using ContactVertex = std::pair<kernel::BlockRole, std::pair<std::uint32_t, std::uint32_t>>;
 
@@ -125,6 +121,61 @@ struct Block {
 
   void refresh_mass_matrix() { mass_matrix = detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
+
+// The area of the convex hull of points in a plane (Andrew's monotone chain, shoelace formula).
+double hull_area(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(),
+            [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+  const auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (const Eigen::Vector2d& p : points) {
+      while (hull.size() >= base + 2 && turn(hull[hull.size() - 2], hull.back(), p) <= 0.0) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();
+    std::reverse(points.begin(), points.end());
+  }
+  double twice = 0.0;
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Eigen::Vector2d &p = hull[k], &q = hull[(k + 1) % hull.size()];
+    twice += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * std::abs(twice);
+}
+
+// The contact area each constraint of a pair stands for (cohesion and tensile strength act
+// through it, Pa times m²): constraints whose normals agree within 5° are the corners of one
+// contact polygon (a face resting on a face gives the corners of their overlap: vertices of each
+// on the other's face, crossings of their edges); the polygon's area, the convex hull of their
+// midpoints in the plane, is shared equally among them. Fewer than three (a vertex, an edge on a
+// face) stand for no area.
+std::vector<double> contact_areas(const std::vector<kernel::ContactConstraint>& found) {
+  const double agree = std::cos(5.0 * std::numbers::pi / 180.0);
+  std::vector<double> out(found.size(), 0.0);
+  std::vector<char> grouped(found.size(), 0);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (grouped[i]) continue;
+    const Eigen::Vector3d n = vec(found[i].normal);
+    std::vector<std::size_t> members{i};
+    for (std::size_t j = i + 1; j < found.size(); ++j) {
+      if (!grouped[j] && n.dot(vec(found[j].normal)) > agree) members.push_back(j), grouped[j] = 1;
+    }
+    if (members.size() < 3) continue;
+    const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    std::vector<Eigen::Vector2d> points;
+    for (const std::size_t m : members) {
+      const Eigen::Vector3d p = 0.5 * (vec(found[m].point_cp) + vec(found[m].point_tp));
+      points.emplace_back(p.dot(t1), p.dot(t2));
+    }
+    const double share = hull_area(std::move(points)) / static_cast<double>(members.size());
+    for (const std::size_t m : members) out[m] = share;
+  }
+  return out;
+}
 
 // A feature that stays the same feature from step to step (convex_polyhedron.hpp, "Feature
 // ids"): a vertex by its index, an edge by its two vertices, a face by its index as given, not
@@ -764,17 +815,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     return c.gap < -range || (c.type == kernel::ConstraintType::edge_edge && nearly_parallel(ba, bb, c));
   });
   hold_contacts(a, b, earlier, found);
-  // The area a vertex-face constraint stands for: its face's, shared by the pair's
-  // vertex-face constraints on that face.
-  std::map<std::tuple<int, std::uint32_t, std::uint32_t>, int> on_face;
-  const auto face_of = [](const kernel::ContactConstraint& c) {
-    const bool cp_face = c.cp_feature.kind == kernel::Feature::Kind::face;
-    const kernel::Feature& f = cp_face ? c.cp_feature : c.tp_feature;
-    return std::tuple<int, std::uint32_t, std::uint32_t>{cp_face ? 0 : 1, f.part, f.index};
-  };
-  for (const kernel::ContactConstraint& c : found) {
-    if (c.type == kernel::ConstraintType::vertex_face) ++on_face[face_of(c)];
-  }
+  const std::vector<double> areas = contact_areas(found);
   const detail::ContactLaw3d pair = pair_law(ba, bb);
   const std::vector<const Constraint*> vanished = vanished_contacts(a, b, earlier, found);
   for (const kernel::ContactConstraint& c : found) {
@@ -785,12 +826,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.key = key_of(a, b, ba, bb, c);
     k.holds = holds_of(ba, bb, c);
     k.law = pair;
-    double area = 0.0;
-    if (c.type == kernel::ConstraintType::vertex_face) {
-      const auto [side, part, index] = face_of(c);
-      const ConvexPolyhedron& poly = (side == 0 ? ba : bb).parts[part];
-      area = face_area(poly, poly.faces()[index]) / on_face[face_of(c)];
-    }
+    const double area = areas[static_cast<std::size_t>(&c - found.data())];
     k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);

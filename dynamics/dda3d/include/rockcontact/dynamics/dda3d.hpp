@@ -55,10 +55,12 @@
 // Static analysis (Dda3dParams::static_analysis, the scene's "analysis": "static"): Shi's, the
 // velocities zeroed after every step, so each step moves the blocks towards equilibrium under
 // the inertia term of the step alone (no kinetic energy carries over).
-// Contact area of a constraint (for cohesion and tensile strength, Pa times m²): a vertex-face
-// constraint stands for its face's area divided among the vertex-face constraints of the pair
-// on that face; the other types stand for no area (cohesion and tensile strength act through
-// the faces a contact spreads over, not through single edges or vertices).
+// Contact area of a constraint (for cohesion and tensile strength, Pa times m²): the constraints
+// of a pair whose normals agree within 5° are the corners of one contact polygon (a face resting
+// on a face: the vertices of each on the other's face and the crossings of their edges); the
+// area of their convex hull in the plane is shared equally among them. Fewer than three (a
+// vertex or an edge on a face) stand for no area: cohesion and tensile strength act through the
+// faces a contact spreads over.
 //
 // Energy: kinetic ½ vᵀ M v, gravitational -m g·(c - c_0), strain ½ V σᵀ C⁻¹ σ, the penalty
 // springs ½ kn d² + ½ kt |s|² of the closed constraints, friction dissipated (the sliding
