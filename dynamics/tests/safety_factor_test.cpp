@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(unknown_or_fixed_block_is_refused_by_name) {
 // within 0.5 % of wedge_factor_of_safety (2.198), the bound (the paper's DDA was 1.8 %
 // low). The bisection's own resolution is 0.1 % and the slip threshold's bias +0.2 %
 // (safety_factor.hpp). The scene's kn = 1e11 N/m gives 2.1987; softer contacts let the wedge
-// rock and creep just below FS (1e10: -0.3 % to -6 % with dt, bench/wedge3d_sweep.py).
+// rock and creep just below FS (1e10: -0.3 % to -6 % with dt, bench/dda3d_sweep.py).
 BOOST_AUTO_TEST_CASE(wedge_matches_limit_equilibrium) {
   const Scene s = read_scene(scenes3d + "wedge.json");
   const SafetyFactorResult r = safety_factor(s.blocks, s.law, s.params, "wedge");
