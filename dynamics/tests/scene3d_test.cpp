@@ -173,6 +173,10 @@ BOOST_AUTO_TEST_CASE(analysis_and_initial_equilibrium) {
   document["analysis"] = "dynamic";
   BOOST_TEST(!dyn::parse_scene3d(document, "dynamic.json").params.static_analysis);
   expect_error([](json& d) { d["analysis"] = "quasi"; }, "analysis", "one of \"dynamic\", \"static\"");
+  expect_error([](json& d) { d["contact"]["damping_ratio"] = -0.5; }, "contact.damping_ratio",
+               "critical damping ratio, a finite number >= 0");
+  document["contact"]["damping_ratio"] = 0.5;
+  BOOST_TEST(dyn::parse_scene3d(document, "damped.json").law.damping_ratio == 0.5);
   expect_error([](json& d) { d["initial_equilibrium"] = 1; }, "initial_equilibrium", "true or false");
 }
 

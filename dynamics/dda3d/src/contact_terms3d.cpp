@@ -135,6 +135,26 @@ void add_contact_terms(const ContactKinematics3d& kin, const ContactState3d& sta
   out.f_j -= kin.t_j.transpose() * (f * v);
 }
 
+void add_dashpots(const ContactKinematics3d& kin, const ContactState3d& state, double normal, double tangential,
+                  ContactBlocks3d out) {
+  if (state.mode == ContactMode::open) return;
+  if (normal > 0.0) add_spring(kin, kin.normal, 0.0, normal, out);
+  if (tangential > 0.0 && state.mode == ContactMode::locked) {
+    const auto [t1, t2] = tangent_basis(kin.normal);
+    add_spring(kin, t1, 0.0, tangential, out);
+    add_spring(kin, t2, 0.0, tangential, out);
+  }
+}
+
+double dashpot_work(const ContactKinematics3d& kin, const ContactState3d& state, double normal, double tangential,
+                    const Eigen::Vector3d& relative) {
+  if (state.mode == ContactMode::open) return 0.0;
+  const double along = kin.normal.dot(relative);
+  double work = normal * along * along;
+  if (state.mode == ContactMode::locked) work += tangential * (relative - along * kin.normal).squaredNorm();
+  return work;
+}
+
 ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactState3d& state,
                                  const ContactLaw3d& law,
                                  const Eigen::Ref<const Eigen::VectorXd>& d_i,

@@ -140,6 +140,17 @@ struct ContactBlocks3d {
 void add_contact_terms(const ContactKinematics3d& kin, const ContactState3d& state,
                        const ContactLaw3d& law, ContactBlocks3d out);
 
+// The dashpots of a closed constraint as springs on the step's relative displacement (dda3d.hpp,
+// "Contact damping"): stiffness `normal` (c_n / h, N/m) along the normal and, when the state is
+// locked, `tangential` (c_t / h) on the tangent plane; nothing for an open one. Returns nothing:
+// the work is (c / h) |Δr|², dashpot_work below.
+void add_dashpots(const ContactKinematics3d& kin, const ContactState3d& state, double normal, double tangential,
+                  ContactBlocks3d out);
+
+// The energy the dashpots of add_dashpots took over a step with relative displacement `relative`.
+double dashpot_work(const ContactKinematics3d& kin, const ContactState3d& state, double normal, double tangential,
+                    const Eigen::Vector3d& relative);
+
 // A constraint after a solve.
 struct ContactUpdate3d {
   ContactMode mode = ContactMode::open;

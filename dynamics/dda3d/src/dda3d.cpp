@@ -417,6 +417,9 @@ struct Constraint {
   detail::ContactUpdate3d update;   // of the last solve
   double slip_work = 0.0;           // friction work of the last solve, J
   double start_energy = 0.0;        // held by its springs at the start of the step, J
+  double dashpot_normal = 0.0;      // c_n and c_t of its dashpots, N s/m (dda3d.hpp)
+  double dashpot_tangential = 0.0;
+  double damping_work = 0.0;        // taken by them over the last solve, J
   Eigen::Vector3d normal_in_tp = Eigen::Vector3d::Zero();  // the normal in tp's own axes (its rotation undone)
 };
 
@@ -457,7 +460,7 @@ struct Dda3d::Impl {
     double detection = 0.0, solve = 0.0;
   } timing;
   Step3dStats last;
-  double friction_dissipated = 0.0, numerical_dissipated = 0.0;
+  double friction_dissipated = 0.0, damping_dissipated = 0.0, numerical_dissipated = 0.0;
   kernel::PredicateCounters predicates;
 
   Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3dParams p);
@@ -652,6 +655,8 @@ void Dda3d::Impl::validate_law() const {
     check_range(std::isfinite(t) && t >= 0.0, where + ".tensile_strength", "a finite strength >= 0 Pa", t);
   };
   check_strengths("contact", law.friction_angle_deg, law.cohesion, law.tensile_strength);
+  check_range(std::isfinite(law.damping_ratio) && law.damping_ratio >= 0.0, "contact.damping_ratio",
+              "a finite ratio >= 0", law.damping_ratio);
   std::set<std::pair<std::string, std::string>> seen;
   for (std::size_t k = 0; k < law.interfaces.size(); ++k) {
     const Interface3d& f = law.interfaces[k];
@@ -828,6 +833,11 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.law = pair;
     const double area = areas[static_cast<std::size_t>(&c - found.data())];
     k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
+    if (law.damping_ratio > 0.0) {
+      const double reduced = ba.dof == 0 ? bb.mass : bb.dof == 0 ? ba.mass : ba.mass * bb.mass / (ba.mass + bb.mass);
+      k.dashpot_normal = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kn);
+      k.dashpot_tangential = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kt);
+    }
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
     if (const auto it = previous.find(k.key); it != previous.end()) {
@@ -985,7 +995,12 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
     t.fi = Eigen::VectorXd::Zero(ni);
     t.fj = Eigen::VectorXd::Zero(nj);
     for (std::size_t c = first; c < last_one; ++c) {
-      detail::add_contact_terms(list[c].kinematics, list[c].state, list[c].law, {t.kii, t.kij, t.kjj, t.fi, t.fj});
+      const Constraint& k = list[c];
+      detail::add_contact_terms(k.kinematics, k.state, k.law, {t.kii, t.kij, t.kjj, t.fi, t.fj});
+      if (settling == nullptr && k.dashpot_normal > 0.0) {
+        detail::add_dashpots(k.kinematics, k.state, k.dashpot_normal / h, k.dashpot_tangential / h,
+                             {t.kii, t.kij, t.kjj, t.fi, t.fj});
+      }
     }
   }
   for (const PairTerms& t : terms) {
@@ -1089,6 +1104,11 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
             detail::spring_energy(k.law, k.update.mode, k.state.offset, k.update.gap, k.update.shear);
         numerical += k.start_energy - end_energy - k.slip_work - end_force.dot(relative);
       }
+      for (Constraint& k : list) {
+        if (k.dashpot_normal == 0.0) continue;
+        const Eigen::Vector3d relative = k.kinematics.t_j * increments(blocks[k.b]) - k.kinematics.t_i * increments(blocks[k.a]);
+        k.damping_work = detail::dashpot_work(k.kinematics, k.state, k.dashpot_normal / h, k.dashpot_tangential / h, relative);
+      }
       return true;
     }
     for (Constraint& k : list) detail::next_iteration(k.state, k.update);
@@ -1123,6 +1143,7 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
   for (Constraint& k : list) {
     detail::commit_step(k.state, k.update);
     friction_dissipated += k.slip_work;
+    damping_dissipated += k.damping_work;
   }
   numerical_dissipated += numerical;
   constraints = std::move(list);
@@ -1241,6 +1262,7 @@ Energies3d Dda3d::energies() const {
     e.contact += detail::spring_energy(k.law, k.state.mode, k.state.offset, k.update.gap, k.state.shear);
   }
   e.friction_dissipated = s.friction_dissipated;
+  e.damping_dissipated = s.damping_dissipated;
   e.numerical_dissipated = s.numerical_dissipated;
   return e;
 }

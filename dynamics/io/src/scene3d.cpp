@@ -55,6 +55,7 @@ constexpr JsonField contact_fields[] = {
     {"cohesion", false, "the cohesion in Pa, a finite number >= 0"},
     {"tensile_strength", false, "the tensile strength in Pa, a finite number >= 0"},
     {"policy", false, "one of \"float\", \"filtered\", \"exact\", \"checked\""},
+    {"damping_ratio", false, "the contact dashpots' critical damping ratio, a finite number >= 0"},
 };
 constexpr JsonField interface_fields[] = {
     {"between", true, "the two group names [group, group], strings"},
@@ -198,6 +199,10 @@ class Scene3dParser {
     law.friction_angle_deg = friction_angle(value, "contact", contact_fields, 0.0);
     law.cohesion = strength(value, "contact", "cohesion", contact_fields, 0.0);
     law.tensile_strength = strength(value, "contact", "tensile_strength", contact_fields, 0.0);
+    if (value.contains("damping_ratio")) {
+      law.damping_ratio = reader_.non_negative(value.at("damping_ratio"), "contact.damping_ratio",
+                                               expected(contact_fields, "damping_ratio"));
+    }
     if (value.contains("policy")) {
       law.policy = reader_.choice(value.at("policy"), "contact.policy",
                                   expected(contact_fields, "policy"), &kernel::parse_policy);

@@ -247,6 +247,7 @@ ordered_json energies_json(const Energies3d& e) {
           {"strain", e.strain},
           {"contact", e.contact},
           {"friction_dissipated", e.friction_dissipated},
+          {"damping_dissipated", e.damping_dissipated},
           {"numerical_dissipated", e.numerical_dissipated},
           {"total", e.total()}};
 }

@@ -52,6 +52,13 @@
 // with their stresses and springs loaded and keep their initial velocities; the energies'
 // references start after it. A block its resting contacts do not hold (the solve would move it
 // farther than a step may) is an error naming it.
+// Contact damping (ContactLaw3d::damping_ratio ζ, off by default, as in 2D): each closed
+// constraint gets a dashpot along its normal, c_n = 2 ζ √(m kn), and while locked one along its
+// tangent plane, c_t = 2 ζ √(m kt), m = m_a m_b / (m_a + m_b) the pair's reduced mass (the movable
+// block's mass against a fixed one), acting on the step's mean relative velocity Δr / h: a spring
+// of stiffness c / h on the step's relative displacement, with no offset. A dashpot of ratio 1
+// damps the constraint's rebound in the critical time. The energy it takes, (c / h) |Δr|² per
+// step, is `damping_dissipated`; the initial equilibrium has none.
 // Static analysis (Dda3dParams::static_analysis, the scene's "analysis": "static"): Shi's, the
 // velocities zeroed after every step, so each step moves the blocks towards equilibrium under
 // the inertia term of the step alone (no kinetic energy carries over).
@@ -118,6 +125,8 @@ struct ContactLaw3d {
   double friction_angle_deg = 0.0;  // degrees, in [0, 90)
   double cohesion = 0.0;            // Pa, >= 0
   double tensile_strength = 0.0;    // Pa, >= 0
+  // Contact dashpots (header, "Contact damping"): their critical damping ratio, finite >= 0.
+  double damping_ratio = 0.0;
   kernel::PolicyKind policy = kernel::PolicyKind::filtered;
   std::vector<Interface3d> interfaces;  // at most one per pair of groups
 };
@@ -172,9 +181,11 @@ struct Energies3d {  // J, at the current instant, relative to the start
   double strain = 0.0;
   double contact = 0.0;                  // held by the penalty springs
   double friction_dissipated = 0.0;
+  double damping_dissipated = 0.0;       // by the contact dashpots
   double numerical_dissipated = 0.0;     // removed by the implicit integrator (header)
   double total() const {
-    return kinetic + gravitational + strain + contact + friction_dissipated + numerical_dissipated;
+    return kinetic + gravitational + strain + contact + friction_dissipated + damping_dissipated +
+           numerical_dissipated;
   }
 };
 
