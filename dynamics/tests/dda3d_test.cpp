@@ -290,6 +290,34 @@ BOOST_AUTO_TEST_CASE(contact_dashpots_keep_the_energy_balance) {
   BOOST_CHECK_THROW(Dda3d(cube_on_slab(), bad, params), std::invalid_argument);
 }
 
+// The stability monitor: a unit cube thrown down at 20 m/s onto the slab with a penalty of only
+// 1e5 N/m (its springs stop it after v √(m / 4 kn) = 1.6 m) sinks through more than half its
+// size (0.5 m), and the run stops there with Stability3dError naming both blocks; with the
+// penalty of the other tests (1e9 N/m) it does not stop. The detection range, 2 x 0.05 x the
+// scene's 8.8 m, keeps the sinking corners' constraints up to 0.88 m deep.
+BOOST_AUTO_TEST_CASE(monitor_stops_a_block_sinking_through_another) {
+  for (const double kn : {1.0e5, 1.0e9}) {
+    Dda3dParams params;
+    params.dt = 1.0e-3;
+    params.max_displacement_ratio = 0.05;
+    auto blocks = cube_on_slab(0.01);
+    blocks[1].velocity = {0, 0, -20.0, 0, 0, 0};
+    Dda3d sim(blocks, penalty(kn, kn, 30.0), params);
+    std::string stopped;
+    try {
+      while (sim.time() < 0.2) sim.step();
+    } catch (const Stability3dError& e) {
+      stopped = e.what();
+    }
+    BOOST_TEST_MESSAGE("kn " << kn << ": " << (stopped.empty() ? "ran 0.2 s" : stopped));
+    if (kn < 1e6) {
+      BOOST_TEST(stopped.find("block 'slab' and block 'cube' interpenetrate by") != std::string::npos);
+    } else {
+      BOOST_TEST(stopped.empty());
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
   const auto message = [](auto make) {
     try {

@@ -12,7 +12,8 @@
 //                         perturbation, and two cubes in the points mode;
 //   OUT_DIR/pairs_json/   the `pairs` examples (examples/pairs/*.json);
 //   OUT_DIR/scene_json/   the scenes (examples/scenes/*.json), plus a region whose joint spacing
-//                         (1e-9 m in a 1 km square) the reader must reject quickly.
+//                         (1e-9 m in a 1 km square) the reader must reject quickly;
+//   OUT_DIR/scene3d_json/ the 3D scenes and cut documents (examples/scenes3d/*.json).
 //
 // The seed of the generators is fixed, so the corpus is the same on every run.
 
@@ -146,7 +147,9 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1];
   const std::size_t per_family = argc == 3 ? std::strtoull(argv[2], nullptr, 10) : 16;
   const fs::path examples = ROCKCONTACT_EXAMPLES_DIR;
-  for (const char* dir : {"pair_kernel", "pair_kernel3d", "pairs_json", "scene_json"}) fs::create_directories(out / dir);
+  for (const char* dir : {"pair_kernel", "pair_kernel3d", "pairs_json", "scene_json", "scene3d_json"}) {
+    fs::create_directories(out / dir);
+  }
 
   const std::size_t pairs = write_generated(out / "pair_kernel", per_family) + write_handmade(out / "pair_kernel");
   const std::size_t pairs3d = write_generated3d(out / "pair_kernel3d", per_family);
@@ -160,7 +163,8 @@ int main(int argc, char** argv) {
  "joint_sets": [{"dip_deg": 30, "spacing": 1e-9}]}
 )");
   ++scenes;
-  std::printf("fuzz_corpus: %zu pair inputs, %zu 3D pair inputs, %zu pairs documents, %zu scenes in %s\n", pairs,
-              pairs3d, pair_files, scenes, out.c_str());
+  const std::size_t scenes3d = copy_json(examples / "scenes3d", out / "scene3d_json");
+  std::printf("fuzz_corpus: %zu pair inputs, %zu 3D pair inputs, %zu pairs documents, %zu scenes, %zu 3D scenes in %s\n",
+              pairs, pairs3d, pair_files, scenes, scenes3d, out.c_str());
   return 0;
 }

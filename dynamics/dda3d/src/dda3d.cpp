@@ -39,6 +39,9 @@ constexpr double step_growth = 1.5;
 // (of the scene's size) up to which blocks count as resting on each other at the start.
 constexpr double settle_regularization = 1.0e-9;
 constexpr double resting_gap = 1.0e-6;
+// The stability monitor's energy floor: every movable block's kinetic energy at this speed, m/s
+// (as in 2D), so that a run starting at rest has a budget.
+constexpr double energy_floor_speed = 1.0e-3;
 // The initial equilibrium's open-close hysteresis, of the scene's size (contact_terms3d.hpp):
 // contacts at exact touch that carry no load (the sides of stacked blocks) otherwise open and
 // close by 1e-8 m from one iteration of the static solve to the next. (Not in the dynamic steps:
@@ -118,6 +121,7 @@ struct Block {
   Box box;
 
   Eigen::MatrixXd mass_matrix;          // dof x dof, of the current moments
+  double size = 0.0;                    // m, the cube root of its volume
 
   void refresh_mass_matrix() { mass_matrix = detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
@@ -485,6 +489,11 @@ struct Dda3d::Impl {
   double largest_displacement(const Eigen::VectorXd& d) const;
   void accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations, double numerical);
   void move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& di);
+  void monitor();
+  Energies3d energies() const;
+  // The monitor's baseline: the energies after the initial equilibrium, the largest drop in
+  // potential energy so far.
+  double start_total = 0.0, start_kinetic = 0.0, start_strain = 0.0, start_contact = 0.0, largest_drop = 0.0;
   void refresh_state(std::size_t i);
 };
 
@@ -518,6 +527,7 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
     b.moments = detail::central_moments3d(b.parts);
     if (!(b.moments.volume > 0.0)) throw std::invalid_argument(name + ": zero volume");
     b.mass = m.density * b.moments.volume;
+    b.size = std::cbrt(b.moments.volume);
     b.dof = spec.fixed ? 0 : spec.rigid ? detail::rigid_dof3d : detail::dof3d;
     b.refresh_mass_matrix();
     b.offset = unknowns;
@@ -547,6 +557,11 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
                                 " m (2 x max_displacement_ratio x the scene's size), within which the penalty acts");
   }
   if (params.initial_equilibrium) settle();
+  const Energies3d e = energies();
+  start_total = e.total();
+  start_kinetic = e.kinetic;
+  start_strain = e.strain;
+  start_contact = e.contact;
 }
 
 // The initial equilibrium (header): the blocks resting on a fixed block at the start, directly or
@@ -1159,6 +1174,35 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
   last.solve_seconds = timing.solve;
 }
 
+// The stability monitor (dda3d.hpp), run on the contact list of the next step: Stability3dError
+// when the energy has grown beyond all the run could draw on, or a closed constraint penetrates
+// more than half the smaller block's size.
+void Dda3d::Impl::monitor() {
+  const Energies3d e = energies();
+  largest_drop = std::max(largest_drop, std::abs(e.gravitational));
+  double floor = 0.0;
+  for (const Block& b : blocks) {
+    if (b.dof > 0) floor += 0.5 * b.mass * energy_floor_speed * energy_floor_speed;
+  }
+  const double budget = 2.0 * (start_kinetic + start_strain + start_contact + largest_drop + floor);
+  if (e.total() - start_total > budget) {
+    throw Stability3dError("at t = " + number(time) + " s the energy has grown by " + number(e.total() - start_total) +
+                           " J, more than twice all the run could draw on (" + number(budget / 2.0) +
+                           " J): the step diverges; lower dt or the penalties");
+  }
+  for (const Constraint& k : constraints) {
+    if (k.state.mode == detail::ContactMode::open) continue;
+    const double depth = -k.kinematics.gap;  // at the start of the step about to be taken
+    const double allowed = 0.5 * std::min(blocks[k.a].size, blocks[k.b].size);
+    if (depth > allowed) {
+      throw Stability3dError("at t = " + number(time) + " s " + block_name(blocks[k.a].spec.id) + " and " +
+                             block_name(blocks[k.b].spec.id) + " interpenetrate by " + number(depth) +
+                             " m, more than half the smaller block's size (" + number(allowed) +
+                             " m): the contact no longer holds them apart; raise kn or lower dt");
+    }
+  }
+}
+
 // Moves block i by the increments `di` of a solve: its stress, rotation, parts and moments.
 void Dda3d::Impl::move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& di) {
   Block& b = blocks[i];
@@ -1193,7 +1237,10 @@ Dda3d::Dda3d(std::vector<Block3dSpec> blocks, ContactLaw3d law, Dda3dParams para
 void Dda3d::step() {
   Impl& s = *impl_;
   const double min_dt = s.params.dt * s.params.min_dt_ratio;
-  if (s.steps > 0) s.constraints = s.detect();
+  if (s.steps > 0) {
+    s.constraints = s.detect();
+    s.monitor();
+  }
   const double limit = s.params.max_displacement_ratio * s.size;
   for (;;) {
     std::vector<Constraint> list = s.constraints;
@@ -1246,8 +1293,10 @@ std::vector<Contact3dState> Dda3d::contacts() const {
   return out;
 }
 
-Energies3d Dda3d::energies() const {
-  const Impl& s = *impl_;
+Energies3d Dda3d::energies() const { return impl_->energies(); }
+
+Energies3d Dda3d::Impl::energies() const {
+  const Impl& s = *this;
   Energies3d e;
   const Eigen::Vector3d g(s.params.gravity[0], s.params.gravity[1], s.params.gravity[2]);
   for (const Block& b : s.blocks) {
