@@ -51,11 +51,18 @@ std::pair<Vector3d, Vector3d> tangent_basis(const Vector3d& n) {
 
 // The spring ½ k (s0 + e . Δr)² along the unit e (header): g = sqrt(k) T e, so that every
 // product of K is that of two equal factors and k_ii, k_jj come out exactly symmetric.
+// T^T e: the generalized force of a force e at the point; empty for a fixed side. (A 3 x 0
+// matrix has no storage, and Eigen's products with it offset a null pointer.)
+Eigen::VectorXd pulled_back(const Eigen::Matrix3Xd& t, const Vector3d& e) {
+  if (t.cols() == 0) return Eigen::VectorXd();
+  return t.transpose() * e;
+}
+
 void add_spring(const ContactKinematics3d& kin, const Vector3d& e, double s0, double k,
                 ContactBlocks3d& out) {
   const double root = std::sqrt(k);
-  const Eigen::VectorXd g_i = root * (kin.t_i.transpose() * e);
-  const Eigen::VectorXd g_j = root * (kin.t_j.transpose() * e);
+  const Eigen::VectorXd g_i = root * pulled_back(kin.t_i, e);
+  const Eigen::VectorXd g_j = root * pulled_back(kin.t_j, e);
   out.k_ii.noalias() += g_i * g_i.transpose();
   out.k_ij.noalias() -= g_i * g_j.transpose();
   out.k_jj.noalias() += g_j * g_j.transpose();
@@ -131,8 +138,16 @@ void add_contact_terms(const ContactKinematics3d& kin, const ContactState3d& sta
   }
   const Vector3d v = unit_or(tangential(state.sliding_direction, n), Vector3d::Zero());
   const double f = friction_limit(law, state.normal_force, kin.area);  // eq. 30
-  out.f_i += kin.t_i.transpose() * (f * v);                            // eq. 32
-  out.f_j -= kin.t_j.transpose() * (f * v);
+  out.f_i += pulled_back(kin.t_i, f * v);                              // eq. 32
+  out.f_j -= pulled_back(kin.t_j, f * v);
+}
+
+Eigen::Vector3d relative_motion(const ContactKinematics3d& kin, const Eigen::Ref<const Eigen::VectorXd>& d_i,
+                                const Eigen::Ref<const Eigen::VectorXd>& d_j) {
+  Vector3d out = Vector3d::Zero();
+  if (kin.t_j.cols() > 0) out += kin.t_j * d_j;
+  if (kin.t_i.cols() > 0) out -= kin.t_i * d_i;
+  return out;
 }
 
 void add_dashpots(const ContactKinematics3d& kin, const ContactState3d& state, double normal, double tangential,
@@ -161,7 +176,7 @@ ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactSt
                                  const Eigen::Ref<const Eigen::VectorXd>& d_j) {
   assert(d_i.size() == kin.t_i.cols() && d_j.size() == kin.t_j.cols());
   const Vector3d& n = kin.normal;
-  const Vector3d relative = kin.t_j * d_j - kin.t_i * d_i;  // eq. 14-15
+  const Vector3d relative = relative_motion(kin, d_i, d_j);
   ContactUpdate3d out;
   out.gap = kin.gap + n.dot(relative);  // eq. 21
   const bool was_closed = state.mode != ContactMode::open;

@@ -125,6 +125,11 @@ struct ContactState3d {
   Eigen::Vector3d sliding_direction = Eigen::Vector3d::Zero();
 };
 
+// The relative motion of p_j to p_i, T_j d_j - T_i d_i (eq. 14-15), for increments or velocities
+// d_i (n_i), d_j (n_j); a fixed side (no unknowns) contributes nothing.
+Eigen::Vector3d relative_motion(const ContactKinematics3d& kin, const Eigen::Ref<const Eigen::VectorXd>& d_i,
+                                const Eigen::Ref<const Eigen::VectorXd>& d_j);
+
 // The caller's dense blocks the terms are added into: k_ii n_i x n_i, k_ij n_i x n_j (the block
 // K_ji is its transpose), k_jj n_j x n_j, f_i n_i, f_j n_j. Blocks of a fixed side are 0-sized.
 struct ContactBlocks3d {

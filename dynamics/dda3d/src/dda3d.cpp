@@ -609,7 +609,7 @@ void Dda3d::Impl::settle() {
       if (k.update.mode == detail::ContactMode::sliding) {
         // Locked whatever the load: the spring keeps the whole trial stretch.
         const Eigen::Vector3d& n = k.kinematics.normal;
-        const Eigen::Vector3d relative = k.kinematics.t_j * dj - k.kinematics.t_i * di;
+        const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, di, dj);
         const Eigen::Vector3d trial = k.state.shear + relative;
         k.update.mode = detail::ContactMode::locked;
         k.update.shear = trial - trial.dot(n) * n;
@@ -882,7 +882,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     if (k.state.sliding_direction.isZero()) {
       // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
       // velocity; the open-close iteration takes it from the solution after that (eq. 8).
-      const Eigen::Vector3d relative = k.kinematics.t_j * bb.velocity - k.kinematics.t_i * ba.velocity;
+      const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, ba.velocity, bb.velocity);
       if (const auto v = kernel::sliding_direction(c.normal, point(relative))) k.state.sliding_direction = vec(*v);
     }
     out.push_back(std::move(k));
@@ -1099,7 +1099,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       k.slip_work = 0.0;
       if (was_closed && k.update.mode == detail::ContactMode::sliding) {
         const Eigen::Vector3d& n = k.kinematics.normal;
-        const Eigen::Vector3d relative = k.kinematics.t_j * dj - k.kinematics.t_i * di;
+        const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, di, dj);
         const Eigen::Vector3d stretch0 = k.state.shear - k.state.shear.dot(n) * n;
         const Eigen::Vector3d slip = relative - relative.dot(n) * n - (k.update.shear - stretch0);
         k.slip_work = k.update.tangential_force.norm() * slip.norm();
@@ -1110,7 +1110,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // stores and the slip dissipates over the step, less the work of the end-of-step force
       // the scheme applies, -(U_1 - U_0) - W_slip - f_1 . Δr per constraint.
       for (const Constraint& k : list) {
-        const Eigen::Vector3d relative = k.kinematics.t_j * increments(blocks[k.b]) - k.kinematics.t_i * increments(blocks[k.a]);
+        const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, increments(blocks[k.a]), increments(blocks[k.b]));
         const bool closed = k.update.mode != detail::ContactMode::open;
         const Eigen::Vector3d end_force =
             closed ? Eigen::Vector3d(k.update.normal_force * k.kinematics.normal + k.update.tangential_force)
@@ -1121,7 +1121,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       }
       for (Constraint& k : list) {
         if (k.dashpot_normal == 0.0) continue;
-        const Eigen::Vector3d relative = k.kinematics.t_j * increments(blocks[k.b]) - k.kinematics.t_i * increments(blocks[k.a]);
+        const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, increments(blocks[k.a]), increments(blocks[k.b]));
         k.damping_work = detail::dashpot_work(k.kinematics, k.state, k.dashpot_normal / h, k.dashpot_tangential / h, relative);
       }
       return true;
