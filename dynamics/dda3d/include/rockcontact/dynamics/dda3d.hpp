@@ -65,7 +65,7 @@
 // Stability monitor (Stability3dError from the step after the one that caused it, as in 2D): the energy has
 // grown by more than twice all the run could draw on (kinetic, strain and spring energy after
 // the initial equilibrium, the largest drop in potential energy so far, and every movable
-// block's kinetic energy at 1 mm/s), or a closed constraint penetrates more than half the
+// block's kinetic energy at 0.5 m/s), or a closed constraint penetrates more than half the
 // smaller block's size (the cube root of its volume): the contact no longer holds the blocks
 // apart. Checked at the start of each step, on the state the last one left. (A block driven
 // deeper than the detection range loses its constraints there; set max_displacement_ratio so
