@@ -42,6 +42,20 @@ std::vector<Block3dSpec> cube_on_slab(double lift = 0.0) {
 // gravity turns instead.
 std::array<double, 3> tilted_gravity(double theta) { return {g * std::sin(theta), 0.0, -g * std::cos(theta)}; }
 
+// A unit cube dropped `lift` m onto the slab under `law`, 300 steps of 1 ms: the simulation and
+// the largest energy its drop released.
+std::pair<Dda3d, double> dropped_cube(const ContactLaw3d& law, double lift) {
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  Dda3d sim(cube_on_slab(lift), law, params);
+  double released = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    sim.step();
+    released = std::max(released, -sim.energies().gravitational);
+  }
+  return {std::move(sim), released};
+}
+
 ContactLaw3d penalty(double kn, double kt, double friction_angle_deg) {
   ContactLaw3d law;
   law.kn = kn;
@@ -244,16 +258,7 @@ BOOST_AUTO_TEST_CASE(cg_solves_as_ldlt) {
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of
 // the energy released leaves room for the rounding of 300 sparse solves.
 BOOST_AUTO_TEST_CASE(energy_balance_with_numerical_dissipation) {
-  const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
-  Dda3dParams params;
-  params.dt = 1.0e-3;
-  Dda3d sim(cube_on_slab(0.05), law, params);
-  double released = 0.0;
-  for (int i = 0; i < 300; ++i) {
-    sim.step();
-    const Energies3d e = sim.energies();
-    released = std::max(released, -e.gravitational);
-  }
+  const auto [sim, released] = dropped_cube(penalty(1.0e9, 1.0e9, 30.0), 0.05);
   const Energies3d e = sim.energies();
   BOOST_TEST_MESSAGE("drop: kinetic " << e.kinetic << ", gravitational " << e.gravitational << ", contact "
                                       << e.contact << ", friction " << e.friction_dissipated << ", numerical "
@@ -270,14 +275,7 @@ BOOST_AUTO_TEST_CASE(energy_balance_with_numerical_dissipation) {
 BOOST_AUTO_TEST_CASE(contact_dashpots_keep_the_energy_balance) {
   ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   law.damping_ratio = 1.0;
-  Dda3dParams params;
-  params.dt = 1.0e-3;
-  Dda3d sim(cube_on_slab(0.05), law, params);
-  double released = 0.0;
-  for (int i = 0; i < 300; ++i) {
-    sim.step();
-    released = std::max(released, -sim.energies().gravitational);
-  }
+  const auto [sim, released] = dropped_cube(law, 0.05);
   const Energies3d e = sim.energies();
   BOOST_TEST_MESSAGE("damped drop: damping " << e.damping_dissipated << ", numerical " << e.numerical_dissipated
                                              << ", total " << e.total() << " J of " << released);
@@ -287,7 +285,7 @@ BOOST_AUTO_TEST_CASE(contact_dashpots_keep_the_energy_balance) {
   BOOST_TEST(std::fabs(0.5 - sim.blocks()[1].centroid.z - expected) <= 0.01 * expected);
   ContactLaw3d bad = law;
   bad.damping_ratio = -1.0;
-  BOOST_CHECK_THROW(Dda3d(cube_on_slab(), bad, params), std::invalid_argument);
+  BOOST_CHECK_THROW(Dda3d(cube_on_slab(), bad, Dda3dParams{}), std::invalid_argument);
 }
 
 // The stability monitor: a unit cube thrown down at 20 m/s onto the slab with a penalty of only
