@@ -62,12 +62,12 @@
 // Static analysis (Dda3dParams::static_analysis, the scene's "analysis": "static"): Shi's, the
 // velocities zeroed after every step, so each step moves the blocks towards equilibrium under
 // the inertia term of the step alone (no kinetic energy carries over).
-// Stability monitor (Stability3dError from the step after the one that caused it, as in 2D): the energy has
+// Stability monitor (Stability3dError, as in 2D): the energy has
 // grown by more than twice all the run could draw on (kinetic, strain and spring energy after
 // the initial equilibrium, the largest drop in potential energy so far, and every movable
-// block's kinetic energy at 0.5 m/s), or a closed constraint penetrates more than half the
+// block's kinetic energy at 1 mm/s), or a closed constraint penetrates more than half the
 // smaller block's size (the cube root of its volume): the contact no longer holds the blocks
-// apart. Checked at the start of each step, on the state the last one left. (A block driven
+// apart. The energy is checked after each step, the penetration at the start of the next one. (A block driven
 // deeper than the detection range loses its constraints there; set max_displacement_ratio so
 // that the range exceeds the penetration a scene may reach.) Non-finite solutions cut the step, and a step that would shrink below
 // min_dt_ratio * dt is the error of step().
