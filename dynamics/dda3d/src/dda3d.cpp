@@ -880,6 +880,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
       k.state = detail::ContactState3d{};
     }
     k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
+    k.update.gap = k.kinematics.gap;  // until a solve: what energies() reads of a fresh list
     if (k.state.sliding_direction.isZero()) {
       // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
       // velocity; the open-close iteration takes it from the solution after that (eq. 8).
