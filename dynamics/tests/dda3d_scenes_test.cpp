@@ -40,8 +40,8 @@ double distance(const Point3& a, const Point3& b) { return std::hypot(a.x - b.x,
 // issue's bound) and moved less than 1 mm. Turning, not sliding, carries the slender blocks'
 // motion: the downhill top edge of each (box vertex 5) has moved at least 10 times as far as its
 // downhill bottom edge (vertex 1), about which it turns; a block sliding without turning moves
-// both alike. (The bottom edges do slip by 2 to 60 mm late in the run, under the thrust of the
-// row leaning on its downhill end: the docs' validation section gives the numbers.)
+// both alike. (The bottom edges do slip by a few mm to 5 cm late in the run, under the thrust of
+// the row leaning on its downhill end: the docs' validation section gives the numbers.)
 BOOST_AUTO_TEST_CASE(slender_blocks_topple_squat_block_stands) {
   const dyn::Scene3d scene = dyn::read_scene3d_file(scenes3d + "toppling.json");
   const double theta = std::atan2(scene.params.gravity[0], -scene.params.gravity[2]);
