@@ -438,7 +438,8 @@ std::string_view status_name(dyn::SafetyStatus status) {
 // The factor of safety of one block of a 3D scene by strength reduction
 // (dynamics/apps/safety_factor.hpp), written as {"factor_of_safety",
 // "critical_friction_angle_deg", "iterations", "status", "trials": [{"factor", "slid",
-// "displacement"}]} plus the slip threshold and the trials' wall seconds.
+// "displacement"}]} in that order, then the block, the slip threshold (m) and the trials' time
+// (s), and each trial's wall seconds after its three fields.
 int run_safety_factor(const SafetyFactorArgs& options) {
   const nlohmann::json document = dyn::read_json_file(options.scene);
   if (!document.is_object() || !document.contains("dimension") || document.at("dimension") != 3) {
@@ -462,14 +463,14 @@ int run_safety_factor(const SafetyFactorArgs& options) {
     trials.push_back({{"factor", t.factor}, {"slid", t.slid}, {"displacement", t.displacement},
                       {"wall_seconds", t.run_seconds}});
   }
-  write_json(options.output, {{"block", options.block},
-                              {"factor_of_safety", result.factor_of_safety},
+  write_json(options.output, {{"factor_of_safety", result.factor_of_safety},
                               {"critical_friction_angle_deg", result.critical_friction_angle_deg},
                               {"iterations", result.iterations},
                               {"status", status_name(result.status)},
+                              {"trials", trials},
+                              {"block", options.block},
                               {"slip", result.slip},
-                              {"time", options.params.time},
-                              {"trials", trials}});
+                              {"time", options.params.time}});
   std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
   summary << "block " << options.block << ": factor of safety " << result.factor_of_safety << " ("
           << status_name(result.status) << ", " << result.iterations << " trials of " << options.params.time
