@@ -477,8 +477,8 @@ struct Dda3d::Impl {
                                            Dropped& dropped) const;
   void hold_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
                      std::vector<kernel::ContactConstraint>& found) const;
-  std::vector<const Constraint*> vanished_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
-                                                   const std::vector<kernel::ContactConstraint>& found) const;
+  std::vector<const Constraint*> vanished_contacts(std::span<const Constraint> earlier,
+                                                   const std::vector<ConstraintKey>& found) const;
   const Constraint* transferred_from(const std::vector<const Constraint*>& vanished,
                                      const kernel::ContactConstraint& c) const;
   bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
@@ -759,11 +759,9 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
 // Contact transfer: the closed constraints of the pair in the last list whose key is no longer
 // found (their features changed: a crossing moved past an edge's end, a vertex slid from a face
 // onto an edge).
-std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::size_t a, std::size_t b,
-                                                             std::span<const Constraint> earlier,
-                                                             const std::vector<kernel::ContactConstraint>& found) const {
-  std::set<ConstraintKey> keys;
-  for (const kernel::ContactConstraint& c : found) keys.insert(key_of(a, b, blocks[a], blocks[b], c));
+std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::span<const Constraint> earlier,
+                                                             const std::vector<ConstraintKey>& found) const {
+  const std::set<ConstraintKey> keys(found.begin(), found.end());
   std::vector<const Constraint*> out;
   for (const Constraint& k : earlier) {
     if (k.state.mode != detail::ContactMode::open && !keys.contains(k.key)) {
@@ -838,22 +836,26 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
   hold_contacts(a, b, earlier, found);
   const std::vector<double> areas = contact_areas(found);
   const detail::ContactLaw3d pair = pair_law(ba, bb);
-  const std::vector<const Constraint*> vanished = vanished_contacts(a, b, earlier, found);
-  for (const kernel::ContactConstraint& c : found) {
+  std::vector<ConstraintKey> keys;
+  for (const kernel::ContactConstraint& c : found) keys.push_back(key_of(a, b, ba, bb, c));
+  const std::vector<const Constraint*> vanished = vanished_contacts(earlier, keys);
+  // The dashpots' coefficients (dda3d.hpp), of the pair's reduced mass.
+  const double reduced = ba.dof == 0 ? bb.mass : bb.dof == 0 ? ba.mass : ba.mass * bb.mass / (ba.mass + bb.mass);
+  const double dashpot_normal = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kn);
+  const double dashpot_tangential = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kt);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const kernel::ContactConstraint& c = found[i];
     Constraint k;
     k.a = a;
     k.b = b;
     k.geometry = c;
-    k.key = key_of(a, b, ba, bb, c);
+    k.key = keys[i];
     k.holds = holds_of(ba, bb, c);
     k.law = pair;
-    const double area = areas[static_cast<std::size_t>(&c - found.data())];
+    const double area = areas[i];
     k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
-    if (law.damping_ratio > 0.0) {
-      const double reduced = ba.dof == 0 ? bb.mass : bb.dof == 0 ? ba.mass : ba.mass * bb.mass / (ba.mass + bb.mass);
-      k.dashpot_normal = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kn);
-      k.dashpot_tangential = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kt);
-    }
+    k.dashpot_normal = dashpot_normal;
+    k.dashpot_tangential = dashpot_tangential;
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
     if (const auto it = previous.find(k.key); it != previous.end()) {
