@@ -152,6 +152,21 @@ BOOST_AUTO_TEST_CASE(unknown_fields_rejected) {
   expect_input_error(document, "pairs[0].colour", "unknown field; expected only id, cp, tp");
 }
 
+// A field name may hold any character (a fuzzed document had "\u0000"); the message must stay
+// one C string that shows it, so what() is not cut short at the NUL.
+BOOST_AUTO_TEST_CASE(control_characters_in_a_field_name_are_shown_escaped) {
+  json document = valid_document();
+  document["pairs"][0][std::string("co\0l\x1f\x7f", 6)] = 1;
+  expect_input_error(document, "pairs[0].co\\u0000l\\u001f\\u007f", "unknown field");
+  try {
+    dyn::parse_pairs(document, "case.json");
+  } catch (const dyn::InputError& e) {
+    const std::string message = e.what();
+    BOOST_TEST(message.find('\0') == std::string::npos);
+    BOOST_TEST(message.ends_with("expected only id, cp, tp"));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(kn_and_H_must_be_finite_and_positive) {
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();

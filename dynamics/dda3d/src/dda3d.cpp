@@ -191,7 +191,6 @@ struct StableFeature {
   std::uint64_t id = 0;  // vertex index; (i << 32) | j of an edge's vertices, i < j; input face
   auto tied() const { return std::tuple(kind, part, id); }
   friend bool operator<(const StableFeature& x, const StableFeature& y) { return x.tied() < y.tied(); }
-  friend bool operator==(const StableFeature& x, const StableFeature& y) { return x.tied() == y.tied(); }
 };
 
 StableFeature stable(const Block& block, const kernel::Feature& f) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -20,6 +21,24 @@ namespace {
 
 using nlohmann::json;
 using nlohmann::ordered_json;
+
+// A field name or id from the document may hold any character, NUL included; the message shows
+// control characters as JSON escapes so that it stays one readable C string.
+std::string printable(const std::string& text) {
+  std::string shown;
+  shown.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      shown += c;
+      continue;
+    }
+    char escape[7];
+    std::snprintf(escape, sizeof escape, "\\u%04x", byte);
+    shown += escape;
+  }
+  return shown;
+}
 
 std::string join_message(const std::string& source, const std::string& path,
                          const std::string& problem) {
@@ -229,9 +248,9 @@ ordered_json run_all(const contact::PotentialContactMethod& method, const PairsI
 }  // namespace
 
 InputError::InputError(std::string source, std::string path, const std::string& problem)
-    : std::runtime_error(join_message(source, path, problem)),
+    : std::runtime_error(join_message(source, printable(path), printable(problem))),
       source_(std::move(source)),
-      path_(std::move(path)) {}
+      path_(printable(path)) {}
 
 namespace {
 
