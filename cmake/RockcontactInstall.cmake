@@ -32,6 +32,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes/
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes3d/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes3d
   FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/scenes_cdem/
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/rockcontact/scenes_cdem
+  FILES_MATCHING PATTERN "*.json" PATTERN "README.md")
 
 # contact/embed/include also holds the C API beside its rockcontact/ tree: rockcontact.h and its
 # Fortran module rockcontact.f90, installed as source since .mod files are compiler-specific.
@@ -45,6 +48,7 @@ install(DIRECTORY
     ${PROJECT_SOURCE_DIR}/contact/embed/include/
     ${PROJECT_SOURCE_DIR}/dynamics/dda2d/include/
     ${PROJECT_SOURCE_DIR}/dynamics/dda3d/include/
+    ${PROJECT_SOURCE_DIR}/dynamics/cdem/include/
     ${PROJECT_SOURCE_DIR}/dynamics/io/include/
     ${PROJECT_SOURCE_DIR}/robustness_tests/generators/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

@@ -37,7 +37,7 @@ block()
     add_test(NAME installed_validate_quick
       COMMAND ${CMAKE_COMMAND} -DEXE=${prefix}/${CMAKE_INSTALL_BINDIR}/rockcontact -DEXPECT_EXIT=0
         -DARG_COUNT=2 -DARG0=validate -DARG1=--quick
-        "-DSTDOUT_REGEX=scenes from ${prefix}/${CMAKE_INSTALL_DATADIR}/rockcontact/scenes.*23 checks, 0 failed"
+        "-DSTDOUT_REGEX=scenes from ${prefix}/${CMAKE_INSTALL_DATADIR}/rockcontact/scenes.*30 checks, 0 failed"
         -P ${PROJECT_SOURCE_DIR}/dynamics/tests/check_cli.cmake
       WORKING_DIRECTORY ${elsewhere})
     set_tests_properties(installed_validate_quick PROPERTIES FIXTURES_REQUIRED rockcontact_installed)

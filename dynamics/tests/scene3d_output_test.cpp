@@ -18,6 +18,7 @@
 
 #include "rockcontact/dynamics/io/scene3d.hpp"
 #include "rockcontact/testing/box_json.hpp"
+#include "rockcontact/testing/output_files.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;
@@ -29,39 +30,14 @@ namespace {
 constexpr double g = 9.81;
 constexpr double density = 2500.0;
 
-// A fresh directory under the test's working directory.
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::current_path() / "scene3d_output_test" / name;
-  fs::remove_all(dir);
-  return dir;
+  return rockcontact::testing::fresh_dir("scene3d_output_test", name);
 }
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, separator);) parts.push_back(part);
-  return parts;
-}
-
-// The rows of a CSV file after its header, which must be `header`; each row split at commas
-// (the ids of these tests hold none).
-std::vector<std::vector<std::string>> read_csv(const fs::path& file, const std::string& header) {
-  const std::vector<std::string> lines = split(read_text(file), '\n');
-  BOOST_TEST_REQUIRE(!lines.empty());
-  BOOST_TEST(lines[0] == header);
-  const std::size_t columns = split(header, ',').size();
-  std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    rows.push_back(split(lines[i], ','));
-    BOOST_TEST_REQUIRE(rows.back().size() == columns);
-  }
-  return rows;
-}
+using rockcontact::testing::pvd_entries;
+using rockcontact::testing::read_csv;
+using rockcontact::testing::read_text;
+using rockcontact::testing::read_xml;
 
 using rockcontact::testing::box_json;
 
@@ -85,24 +61,6 @@ json scene_with(json blocks, double duration, std::size_t every) {
       {"output", {{"every", every}}}};
   scene["blocks"] = std::move(blocks);
   return scene;
-}
-
-pt::ptree read_xml(const fs::path& file) {
-  pt::ptree tree;
-  pt::read_xml(file.string(), tree);
-  return tree;
-}
-
-// The (timestep, file) entries of a .pvd, in order.
-std::vector<std::pair<double, std::string>> pvd_entries(const fs::path& file) {
-  std::vector<std::pair<double, std::string>> entries;
-  const pt::ptree pvd = read_xml(file);
-  for (const auto& [name, node] : pvd.get_child("VTKFile.Collection")) {
-    if (name != "DataSet") continue;
-    entries.emplace_back(node.get<double>("<xmlattr>.timestep"),
-                         node.get<std::string>("<xmlattr>.file"));
-  }
-  return entries;
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -14,6 +13,7 @@
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
 #include "rockcontact/testing/box_json.hpp"
+#include "rockcontact/testing/input_error.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;
@@ -68,20 +68,7 @@ void expect_error(const std::function<void(json&)>& change, const std::string& p
                   const std::string& expected) {
   json document = contract_scene();
   change(document);
-  BOOST_TEST_CONTEXT("path " << path) {
-    try {
-      dyn::parse_scene3d(document, "case.json");
-      BOOST_ERROR("accepted a malformed scene");
-    } catch (const dyn::InputError& e) {
-      const std::string message = e.what();
-      BOOST_TEST_MESSAGE(message);
-      BOOST_TEST(e.source() == "case.json");
-      BOOST_TEST(e.path() == path);
-      BOOST_TEST(message.find("case.json: " + path + ": ") == 0);
-      BOOST_TEST(message.find(expected) != std::string::npos,
-                 "message lacks \"" << expected << '"');
-    }
-  }
+  rockcontact::testing::expect_input_error(&dyn::parse_scene3d, document, path, expected);
 }
 
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
@@ -270,19 +257,10 @@ BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
 }
 
 BOOST_AUTO_TEST_CASE(malformed_json_names_the_file) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "rockcontact_scene3d_test_malformed.json";
-  std::ofstream(file) << "{\"dimension\": 3,\n \"time\": {\"dt\": 1e-3,}\n}\n";
-  try {
-    dyn::read_scene3d_file(file);
-    BOOST_ERROR("accepted malformed JSON");
-  } catch (const dyn::InputError& e) {
-    BOOST_TEST_MESSAGE(e.what());
-    BOOST_TEST(e.path().empty());
-    BOOST_TEST(std::string(e.what()).find(file.string() + ": malformed JSON: ") == 0);
-    BOOST_TEST(std::string(e.what()).find("line 2") != std::string::npos);
-  }
-  std::filesystem::remove(file);
+  rockcontact::testing::expect_malformed_json(
+      [](const std::filesystem::path& file) { dyn::read_scene3d_file(file); },
+      "rockcontact_scene3d_test_malformed.json",
+      "{\"dimension\": 3,\n \"time\": {\"dt\": 1e-3,}\n}\n");
 }
 
 // The 2D reader says where a 3D scene goes; the 3D reader reads it.

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/testing/output_files.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace fs = std::filesystem;
@@ -34,24 +35,16 @@ std::string shortest(double x) {
 
 const std::string scene_dir = ROCKCONTACT_DYNAMICS_TESTDATA_DIR "/scenes";
 
-// A fresh directory under the test's working directory.
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::current_path() / "scene_output_test" / name;
-  fs::remove_all(dir);
-  return dir;
+  return rockcontact::testing::fresh_dir("scene_output_test", name);
 }
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, separator);) parts.push_back(part);
-  return parts;
-}
+using rockcontact::testing::data_array;
+using rockcontact::testing::numbers;
+using rockcontact::testing::pvd_entries;
+using rockcontact::testing::read_text;
+using rockcontact::testing::read_xml;
+using rockcontact::testing::split;
 
 struct TrackRow {
   double t, x, y, rotation, vx, vy, omega;
@@ -73,34 +66,10 @@ std::vector<TrackRow> read_tracks(const fs::path& file) {
   return rows;
 }
 
-// Parses an XML file (throws on malformed XML, which fails the test case).
-pt::ptree read_xml(const fs::path& file) {
-  pt::ptree tree;
-  pt::read_xml(file.string(), tree);
-  return tree;
-}
-
 std::size_t count(const std::string& text, const std::string& part) {
   std::size_t n = 0;
   for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
   return n;
-}
-
-// The numbers of a VTK DataArray's text.
-std::vector<double> numbers(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<double> values;
-  for (double v; in >> v;) values.push_back(v);
-  return values;
-}
-
-// The DataArray called `name` under `parent` (Points, Polys or CellData).
-const pt::ptree& data_array(const pt::ptree& parent, const std::string& name) {
-  for (const auto& [tag, child] : parent) {
-    if (tag == "DataArray" && child.get<std::string>("<xmlattr>.Name", "") == name) return child;
-  }
-  BOOST_FAIL("no DataArray " << name);
-  return parent;
 }
 
 // Checks one frame: well-formed XML, one polygon per block with the right number of points,
@@ -128,18 +97,6 @@ void check_frame(const fs::path& file, const std::vector<std::size_t>& vertex_co
   BOOST_TEST(numbers(data_array(cells, "velocity").data()).size() == 3 * vertex_counts.size());
 }
 
-// frames.pvd: the frame files in order with their times.
-std::vector<std::pair<double, std::string>> read_pvd(const fs::path& file) {
-  const pt::ptree tree = read_xml(file);
-  BOOST_TEST(tree.get<std::string>("VTKFile.<xmlattr>.type") == "Collection");
-  std::vector<std::pair<double, std::string>> frames;
-  for (const auto& [tag, child] : tree.get_child("VTKFile.Collection")) {
-    if (tag != "DataSet") continue;
-    frames.emplace_back(child.get<double>("<xmlattr>.timestep"),
-                        child.get<std::string>("<xmlattr>.file"));
-  }
-  return frames;
-}
 
 dyn::BlockState square_state(const std::string& id, double x, double y, bool fixed) {
   dyn::BlockState b;
@@ -219,7 +176,7 @@ BOOST_AUTO_TEST_CASE(recorder_writes_every_file_in_its_format) {
              "0.1,0.5,-2,0,1.25,0.125,0.0625,-0.0625\n"
              "0.2,0.5,-2,0.03125,1.25,0.125,0.0625,-0.03125\n");
 
-  const auto frames = read_pvd(dir / "frames.pvd");
+  const auto frames = pvd_entries(dir / "frames.pvd");
   BOOST_TEST_REQUIRE(frames.size() == 3u);
   BOOST_TEST(frames[0].second == "frame_0000.vtp");
   BOOST_TEST(frames[2].second == "frame_0002.vtp");
@@ -336,7 +293,7 @@ BOOST_AUTO_TEST_CASE(free_fall_rows_follow_the_analytic_parabola) {
       BOOST_TEST(r.omega == 0.0);
     }
   }
-  const auto frames = read_pvd(dir / "frames.pvd");
+  const auto frames = pvd_entries(dir / "frames.pvd");
   BOOST_TEST_REQUIRE(frames.size() == times.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     BOOST_TEST(std::abs(frames[i].first - times[i]) < 1e-15);
@@ -370,7 +327,7 @@ BOOST_AUTO_TEST_CASE(two_block_run_writes_the_contract_outputs) {
   BOOST_TEST(rows.front().y == 1.5);
   for (const TrackRow& r : rows) BOOST_TEST(r.block == "slider");
 
-  const auto frames = read_pvd(dir / "frames.pvd");
+  const auto frames = pvd_entries(dir / "frames.pvd");
   BOOST_TEST(frames.size() == 5u);
   for (const auto& [t, file] : frames) check_frame(dir / file, {4, 4});
   BOOST_TEST(count(read_text(dir / "final.svg"), "<polygon") == 3u);  // base, slider, the slider at the start
@@ -479,7 +436,7 @@ BOOST_AUTO_TEST_CASE(contacts_csv_carries_a_static_column_s_weights) {
   const pt::ptree vtp = read_xml(dir / "contacts_0000.vtp");
   BOOST_TEST(vtp.get<std::size_t>("VTKFile.PolyData.Piece.<xmlattr>.NumberOfPoints") ==
              static_cast<std::size_t>(at_start));
-  BOOST_TEST(read_pvd(dir / "contacts.pvd").size() == report.frames);
+  BOOST_TEST(pvd_entries(dir / "contacts.pvd").size() == report.frames);
 }
 
 // A square pressed 0.1 mm into a frictionless floor and thrown upwards at 1 m/s: at t = 0 the

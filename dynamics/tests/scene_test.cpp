@@ -13,6 +13,7 @@
 
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/kernel/2d/block_cutting.hpp"
+#include "rockcontact/testing/input_error.hpp"
 
 namespace dyn = rockcontact::dynamics;
 namespace kernel = rockcontact::kernel;
@@ -56,20 +57,7 @@ void expect_error(const std::function<void(json&)>& change, const std::string& p
                   const std::string& expected) {
   json document = contract_scene();
   change(document);
-  BOOST_TEST_CONTEXT("path " << path) {
-    try {
-      dyn::parse_scene(document, "case.json");
-      BOOST_ERROR("accepted a malformed scene");
-    } catch (const dyn::InputError& e) {
-      const std::string message = e.what();
-      BOOST_TEST_MESSAGE(message);
-      BOOST_TEST(e.source() == "case.json");
-      BOOST_TEST(e.path() == path);
-      BOOST_TEST(message.find("case.json: " + path + ": ") == 0);
-      BOOST_TEST(message.find(expected) != std::string::npos,
-                 "message lacks \"" << expected << '"');
-    }
-  }
+  rockcontact::testing::expect_input_error(&dyn::parse_scene, document, path, expected);
 }
 
 std::optional<dyn::InputError> file_error(const std::string& file) {

@@ -107,11 +107,13 @@ BOOST_AUTO_TEST_CASE(quick_run_covers_every_scene_with_consistent_rows) {
     }
   }
   BOOST_TEST(sections ==
-             (std::set<std::string>{"4.1", "4.2", "4.3", "5.1", "5.2", "5.3", "6.1", "6.2", "001"}));
+             (std::set<std::string>{"4.1", "4.2", "4.3", "5.1", "5.2", "5.3", "6.1", "6.2", "001", "003", "bar"}));
   // 3 (4.1) + 1 (4.2) + 3 x 2 (4.3) + 2 (5.1) + 2 (5.2) + 2 x 2 (5.3) + 2 (6.1 quick) + 1 (6.2 quick)
-  // + 2 (seed 001 §6.1 wedge: factor of safety, frictionless slide)
-  BOOST_TEST(rows.size() == 23u);
-  BOOST_TEST(announced.size() == 12u);  // 4.1, 4.2, three inclines, 5.1, 5.2, two 5.3, 6.1, 6.2, the wedge
+  // + 2 (seed 001 §6.1 wedge: factor of safety, frictionless slide) + 3 (seed 003 prisms: touch
+  // time, momentum, velocity exchange) + 2 x 2 (bars, two-scale and penalty)
+  BOOST_TEST(rows.size() == 30u);
+  // 4.1, 4.2, three inclines, 5.1, 5.2, two 5.3, 6.1, 6.2, the wedge, the prisms, two bars
+  BOOST_TEST(announced.size() == 15u);
   // One output directory per run: 4.1, 4.2, 3 inclines, 4 bounces, 5.2, 2 small-edge cases, two
   // collapses, the valley.
   std::size_t runs = 0;

@@ -4,8 +4,9 @@
 //
 // Exit status: 0 success (pairs with an invalid polygon are results, not failures), 2 malformed
 // input, bad flags, an output file that cannot be written or a scene the engine refuses or
-// stops (StabilityError, Stability3dError), 3 a check that failed (a `validate` scene off its
-// reference, a `pairs --compare` that found a disagreement), 1 an unexpected internal error.
+// stops (StabilityError, Stability3dError, CdemStabilityError), 3 a check that failed (a
+// `validate` scene off its reference, a `pairs --compare` that found a disagreement), 1 an
+// unexpected internal error.
 
 #include <unistd.h>
 
@@ -39,6 +40,8 @@
 #include "rockcontact/dynamics/io/scene.hpp"
 #include "rockcontact/dynamics/io/scene3d.hpp"
 #include "rockcontact/dynamics/io/scene3d_output.hpp"
+#include "rockcontact/dynamics/io/scene_cdem.hpp"
+#include "rockcontact/dynamics/io/scene_cdem_output.hpp"
 #include "rockcontact/dynamics/io/scene_output.hpp"
 #include "rockcontact/dynamics/apps/validation.hpp"
 #include "rockcontact/kernel/2d/demarcation.hpp"
@@ -226,17 +229,25 @@ int report_stop(const RunArgs& options, double time, const std::string& error) {
   return exit_bad_input;
 }
 
-// A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
-int run_run3d(const RunArgs& options, const nlohmann::json& document) {
+// The flags only the 2D DDA has: false, after saying that `flag` `applies` (the rest of the
+// message), when one of them is given.
+bool without_2d_flags(const RunArgs& options, std::string_view applies) {
   for (const auto& [given, flag] : {std::pair{options.checkpoint_every > 0, "--checkpoint-every"},
                                     std::pair{!options.restart.empty(), "--restart"},
                                     std::pair{options.threads > 0, "--threads"}}) {
     if (given) {
-      std::cerr << "rockcontact: " << options.scene << ": " << flag
-                << " applies to 2D scenes only; the 3D engine has no checkpoints and runs on one "
-                   "thread\n";
-      return exit_bad_input;
+      std::cerr << "rockcontact: " << options.scene << ": " << flag << ' ' << applies << '\n';
+      return false;
     }
+  }
+  return true;
+}
+
+// A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
+int run_run3d(const RunArgs& options, const nlohmann::json& document) {
+  if (!without_2d_flags(options, "applies to 2D scenes only; the 3D engine has no checkpoints and "
+                                 "runs on one thread")) {
+    return exit_bad_input;
   }
   const dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
   ProgressBar bar;
@@ -276,6 +287,46 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
   return exit_ok;
 }
 
+// A CDEM scene ("solver": "cdem") on the CDEM engine (dynamics/io/scene_cdem_output.hpp).
+int run_run_cdem(const RunArgs& options, const nlohmann::json& document) {
+  if (!without_2d_flags(options, "applies to 2D DDA scenes only; the CDEM engine has no "
+                                 "checkpoints, and its threads are OpenMP's (OMP_NUM_THREADS)")) {
+    return exit_bad_input;
+  }
+  const dyn::SceneCdem scene = dyn::parse_scene_cdem(document, options.scene);
+  ProgressBar bar;
+  dyn::RunCdemOptions run_options;
+  run_options.out_dir = options.out;
+  run_options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  dyn::RunCdemReport report;
+  try {
+    report = dyn::run_scene_cdem(scene, run_options);
+  } catch (const std::invalid_argument& e) {  // a polygon, mesh size, dt or law the engine refuses
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const dyn::CdemStabilityError& e) {  // a start the engine cannot take a step from
+    std::cerr << "rockcontact: " << options.scene << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  bar.finish();
+  if (report.status != "completed") return report_stop(options, report.time, report.error);
+  const dyn::CdemCounters& c = report.counters;
+  std::cout << "scene: " << scene.source << " (CDEM, " << scene.blocks.size() << " blocks, "
+            << report.elements << " elements, " << report.nodes << " nodes)\n"
+            << "steps: " << report.steps << " (t = " << report.time << " s, critical dt "
+            << report.critical_dt << " s), wall "
+            << report.simulation_seconds + report.output_seconds << " s (simulation "
+            << report.simulation_seconds << " s)\n"
+            << "energy: total " << report.initial.total() << " J at the start, "
+            << report.final.total() << " J at the end\n"
+            << "contact: " << c.touches << " touches, " << c.clone_nodes_formed
+            << " clone nodes formed, " << c.clone_nodes_separated << " separated, "
+            << c.subdivided_elements << " subdivided elements; " << report.events << " events\n"
+            << "outputs: " << options.out << " (tracks.csv, events.csv, " << report.frames
+            << " frames in frames.pvd, final.svg, summary.json)\n";
+  return exit_ok;
+}
+
 int run_run(const RunArgs& options) {
   // --dt and --duration replace the document's values before it is parsed, so the scene's checks
   // and its digest (checkpoints) see them.
@@ -284,6 +335,7 @@ int run_run(const RunArgs& options) {
     if (options.dt) document["time"]["dt"] = *options.dt;
     if (options.duration) document["time"]["duration"] = *options.duration;
   }
+  if (dyn::is_scene_cdem_document(document)) return run_run_cdem(options, document);
   if (dyn::is_scene3d_document(document)) return run_run3d(options, document);
   dyn::Scene scene = dyn::parse_scene(document, options.scene);
   for (const std::string& warning : dyn::stiffness_warnings(scene)) {
@@ -340,9 +392,11 @@ void add_run(CLI::App& app, int& exit_status) {
   CLI::App* sub = app.add_subcommand(
       "run",
       "Run a scene and write its tracks, contacts, frames and summary: 2D (explicit DDA with "
-      "potential contact; SI units, forces per metre of thickness, contact kn in Pa, kt in N/m) "
-      "or, with \"dimension\": 3, 3D (implicit DDA with penalty contact, kn and kt in N/m per "
-      "constraint). Every field: docs/user-guide.md");
+      "potential contact; SI units, forces per metre of thickness, contact kn in Pa, kt in N/m); "
+      "with \"dimension\": 3, 3D (implicit DDA with penalty contact, kn and kt in N/m per "
+      "constraint); or, with \"solver\": \"cdem\", 2D CDEM (deformable blocks meshed into "
+      "triangles, two-scale clone-node or penalty contact; tracks, events, meshes). Every field: "
+      "docs/user-guide.md");
   sub->add_option("scene", options->scene, "Scene JSON (fields: docs/user-guide.md)")
       ->required();
   sub->add_option("-o,--out", options->out, "Output directory (created if missing)")->required();

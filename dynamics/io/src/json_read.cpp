@@ -223,4 +223,55 @@ Material read_material(const JsonReader& reader, const json& value, const std::s
   return m;
 }
 
+SceneTime read_scene_time(const JsonReader& reader, const json& value, std::string_view expected,
+                          std::span<const JsonField> fields) {
+  reader.check_object(value, "time", expected, fields);
+  SceneTime time;
+  time.dt = reader.positive(value.at("dt"), "time.dt", json_field(fields, "dt").expected);
+  time.duration = reader.positive(value.at("duration"), "time.duration",
+                                  json_field(fields, "duration").expected);
+  constexpr double max_steps = 1e12;
+  if (!(time.duration / time.dt <= max_steps)) {
+    reader.fail("time", "duration / dt = " + json(time.duration / time.dt).dump() +
+                            " steps; expected at most 1e12 steps");
+  }
+  return time;
+}
+
+SceneOutput read_scene_output(const JsonReader& reader, const json& document,
+                              std::span<const std::string> ids,
+                              std::vector<std::string> default_track) {
+  static constexpr JsonField fields[] = {
+      {"track", false, "an array of block ids"},
+      {"every", false, "the recording interval in steps, an integer >= 1"},
+  };
+  const json no_output = json::object();
+  const json& value = document.contains("output") ? document.at("output") : no_output;
+  reader.check_object(value, "output", "an object {\"track\", \"every\"}", fields);
+  SceneOutput output;
+  if (value.contains("every")) {
+    const std::string_view what = json_field(fields, "every").expected;
+    const std::int64_t every = reader.integer(value.at("every"), "output.every", what);
+    if (every < 1) reader.fail_expected("output.every", what, value.at("every"));
+    output.every = static_cast<std::size_t>(every);
+  }
+  if (!value.contains("track")) {
+    output.track = std::move(default_track);
+    return output;
+  }
+  const json& track = value.at("track");
+  if (!track.is_array())
+    reader.fail_expected("output.track", json_field(fields, "track").expected, track);
+  for (std::size_t i = 0; i < track.size(); ++i) {
+    const std::string item_path = json_element("output.track", i);
+    const std::string& id = reader.string(track[i], item_path, "a block id");
+    if (std::find(ids.begin(), ids.end(), id) == ids.end())
+      reader.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
+    if (std::find(output.track.begin(), output.track.end(), id) != output.track.end())
+      reader.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
+    output.track.push_back(id);
+  }
+  return output;
+}
+
 }  // namespace rockcontact::dynamics

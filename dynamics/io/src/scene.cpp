@@ -105,10 +105,6 @@ constexpr JsonField boundary_fields[] = {
     {"depth", false, "the depth of the fixed polygon behind the segment in m, a finite number > 0"},
     {"group", false, "a group name (a string) that interfaces refer to"},
 };
-constexpr JsonField output_fields[] = {
-    {"track", false, "an array of block ids"},
-    {"every", false, "the recording interval in steps, an integer >= 1"},
-};
 
 std::string_view expected(std::span<const JsonField> fields, std::string_view name) {
   return json_field(fields, name).expected;
@@ -184,19 +180,11 @@ class SceneParser {
   }
 
   void time(const json& value, Scene& scene) const {
-    reader_.check_object(value, "time", expected(scene_fields, "time"), time_fields);
-    scene.params.dt = reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
-    scene.duration =
-        reader_.positive(value.at("duration"), "time.duration", expected(time_fields, "duration"));
-    // The step count must be a number a run can reach (and a size_t can hold): 10^12 steps of
-    // the smallest scene would take weeks.
-    if (!(scene.duration / scene.params.dt <= max_steps)) {
-      reader_.fail("time", "duration / dt = " + json(scene.duration / scene.params.dt).dump() +
-                               " steps; expected at most 1e12 steps");
-    }
+    const SceneTime time =
+        read_scene_time(reader_, value, expected(scene_fields, "time"), time_fields);
+    scene.params.dt = time.dt;
+    scene.duration = time.duration;
   }
-
-  static constexpr double max_steps = 1e12;
 
   void physics(const json& document, Scene& scene) const {
     if (document.contains("gravity")) {
@@ -404,25 +392,11 @@ class SceneParser {
   }
 
   // Without "output" or "output.track", every block that is not fixed is tracked.
+  // Without "output" or "output.track", every block that is not fixed is tracked.
   void output(const json& document, Scene& scene) const {
-    const json no_output = json::object();
-    const json& value = document.contains("output") ? document.at("output") : no_output;
-    reader_.check_object(value, "output", expected(scene_fields, "output"), output_fields);
-    if (value.contains("every")) {
-      const std::int64_t every =
-          reader_.integer(value.at("every"), "output.every", expected(output_fields, "every"));
-      if (every < 1) {
-        reader_.fail_expected("output.every", expected(output_fields, "every"), value.at("every"));
-      }
-      scene.every = static_cast<std::size_t>(every);
-    }
-    if (value.contains("track")) {
-      track(value.at("track"), scene);
-    } else {
-      for (const BlockSpec& b : scene.blocks) {
-        if (!b.fixed) scene.track.push_back(b.id);
-      }
-    }
+    SceneOutput output = read_scene_output(reader_, document, scene.blocks);
+    scene.track = std::move(output.track);
+    scene.every = output.every;
   }
 
   void resolve_h(Scene& scene) const {
@@ -676,15 +650,7 @@ class SceneParser {
   }
 
   Material material_of(const json& value, const std::string& path) const {
-    const std::string& name = reader_.string(value, path, expected(block_fields, "material"));
-    const auto it = materials_.find(name);
-    if (it == materials_.end()) {
-      std::string names;
-      for (const auto& [known, m] : materials_) names += (names.empty() ? "" : ", ") + known;
-      reader_.fail(path, "unknown material \"" + name + "\"; expected one of the scene's " +
-                             "materials (" + (names.empty() ? "none defined" : names) + ")");
-    }
-    return it->second;
+    return find_material(reader_, value, path, expected(block_fields, "material"), materials_);
   }
 
   std::vector<kernel::Point2> polygon(const json& value, const std::string& path,
@@ -716,23 +682,6 @@ class SceneParser {
     }
   }
 
-  void track(const json& value, Scene& scene) const {
-    const std::string path = "output.track";
-    if (!value.is_array()) reader_.fail_expected(path, expected(output_fields, "track"), value);
-    for (std::size_t i = 0; i < value.size(); ++i) {
-      const std::string item_path = json_element(path, i);
-      const std::string& id = reader_.string(value[i], item_path, "a block id");
-      const bool known = std::any_of(scene.blocks.begin(), scene.blocks.end(),
-                                     [&](const BlockSpec& b) { return b.id == id; });
-      if (!known)
-        reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
-      if (std::find(scene.track.begin(), scene.track.end(), id) != scene.track.end()) {
-        reader_.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
-      }
-      scene.track.push_back(id);
-    }
-  }
-
   JsonReader reader_;
   Materials materials_;
 };
@@ -753,8 +702,10 @@ std::string_view to_string(HRule rule) {
   return "?";
 }
 
-std::size_t step_count(const Scene& scene) {
-  const double ratio = scene.duration / scene.params.dt;
+std::size_t step_count(const Scene& scene) { return step_count(scene.duration, scene.params.dt); }
+
+std::size_t step_count(double duration, double dt) {
+  const double ratio = duration / dt;
   const double nearest = std::round(ratio);
   const bool integral = std::abs(ratio - nearest) <= 1e-9 * nearest;
   return static_cast<std::size_t>(integral ? nearest : std::ceil(ratio));

@@ -79,10 +79,6 @@ constexpr JsonField block_fields[] = {
     {"velocity", false,
      "the centroid velocity [vx, vy, vz, wx, wy, wz] in m/s and rad/s, six finite numbers"},
 };
-constexpr JsonField output_fields[] = {
-    {"track", false, "an array of block ids"},
-    {"every", false, "the recording interval in steps, an integer >= 1"},
-};
 
 std::string_view expected(std::span<const JsonField> fields, std::string_view name) {
   return json_field(fields, name).expected;
@@ -140,15 +136,10 @@ class Scene3dParser {
   }
 
   void time(const json& value, Scene3d& scene) const {
-    reader_.check_object(value, "time", expected(scene_fields, "time"), time_fields);
-    scene.params.dt = reader_.positive(value.at("dt"), "time.dt", expected(time_fields, "dt"));
-    scene.duration =
-        reader_.positive(value.at("duration"), "time.duration", expected(time_fields, "duration"));
-    // As in 2D: a run of more than 1e12 steps of dt would take weeks.
-    if (!(scene.duration / scene.params.dt <= 1e12)) {
-      reader_.fail("time", "duration / dt = " + json(scene.duration / scene.params.dt).dump() +
-                               " steps; expected at most 1e12 steps");
-    }
+    const SceneTime time =
+        read_scene_time(reader_, value, expected(scene_fields, "time"), time_fields);
+    scene.params.dt = time.dt;
+    scene.duration = time.duration;
     if (value.contains("max_displacement_ratio")) {
       const std::string path = "time.max_displacement_ratio";
       const std::string_view what = expected(time_fields, "max_displacement_ratio");
@@ -284,37 +275,9 @@ class Scene3dParser {
 
   // Without "output" or "output.track", every block that is not fixed is tracked.
   void output(const json& document, Scene3d& scene) const {
-    const json no_output = json::object();
-    const json& value = document.contains("output") ? document.at("output") : no_output;
-    reader_.check_object(value, "output", expected(scene_fields, "output"), output_fields);
-    if (value.contains("every")) {
-      const std::int64_t every =
-          reader_.integer(value.at("every"), "output.every", expected(output_fields, "every"));
-      if (every < 1)
-        reader_.fail_expected("output.every", expected(output_fields, "every"), value.at("every"));
-      scene.every = static_cast<std::size_t>(every);
-    }
-    if (!value.contains("track")) {
-      for (const Block3dSpec& b : scene.blocks) {
-        if (!b.fixed) scene.track.push_back(b.id);
-      }
-      return;
-    }
-    const json& track = value.at("track");
-    if (!track.is_array())
-      reader_.fail_expected("output.track", expected(output_fields, "track"), track);
-    for (std::size_t i = 0; i < track.size(); ++i) {
-      const std::string item_path = json_element("output.track", i);
-      const std::string& id = reader_.string(track[i], item_path, "a block id");
-      const bool known = std::any_of(scene.blocks.begin(), scene.blocks.end(),
-                                     [&](const Block3dSpec& b) { return b.id == id; });
-      if (!known)
-        reader_.fail(item_path, "no block has the id \"" + id + "\"; expected a block id");
-      if (std::find(scene.track.begin(), scene.track.end(), id) != scene.track.end()) {
-        reader_.fail(item_path, "block \"" + id + "\" is listed twice; expected each id once");
-      }
-      scene.track.push_back(id);
-    }
+    SceneOutput output = read_scene_output(reader_, document, scene.blocks);
+    scene.track = std::move(output.track);
+    scene.every = output.every;
   }
 
  private:
@@ -323,16 +286,7 @@ class Scene3dParser {
   }
 
   Material material_of(const json& value, const std::string& path) const {
-    const std::string& name = reader_.string(value, path, expected(block_fields, "material"));
-    const auto it = materials_.find(name);
-    if (it == materials_.end()) {
-      std::string names;
-      for (const auto& [known, m] : materials_) names += (names.empty() ? "" : ", ") + known;
-      reader_.fail(path, "unknown material \"" + name +
-                             "\"; expected one of the scene's materials (" +
-                             (names.empty() ? "none defined" : names) + ")");
-    }
-    return it->second;
+    return find_material(reader_, value, path, expected(block_fields, "material"), materials_);
   }
 
   // friction_angle_deg of `value` at `path`, in [0, 90), or `fallback` when absent.

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "output_text.hpp"
+#include "run_clock.hpp"
 #include "rockcontact/dynamics/io/atomic_file.hpp"
 
 namespace rockcontact::dynamics {
@@ -24,7 +23,6 @@ namespace fs = std::filesystem;
 using kernel::Point3;
 using output_text::csv_field;
 using output_text::number;
-using output_text::pixel;
 using output_text::xml_escape;
 
 constexpr std::string_view tracks_header = "t,block,x,y,z,rx,ry,rz,vx,vy,vz,wx,wy,wz";
@@ -64,9 +62,7 @@ void write_frame(const fs::path& file, std::span<const Block3dState> blocks) {
   AtomicFile output(file);
   std::ostream& out = output.stream();
   output_text::open_piece(out, points, 0, polys);
-  out << "      <Points>\n"
-      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-         "format=\"ascii\">\n";
+  output_text::open_points(out);
   for (const Block3dState& b : blocks) {
     for (const kernel::ConvexPolyhedron& p : b.parts) {
       for (const Point3& v : p.vertices())
@@ -194,28 +190,15 @@ std::string shaded(std::array<int, 3> rgb, double shade) {
 
 void write_svg(const fs::path& file, std::span<const Block3dState> blocks,
                std::span<const std::string> tracked, double time) {
-  constexpr double width_px = 800.0;
   const std::vector<DrawnFace> faces = visible_faces(blocks, View{});
-  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
+  output_text::Extent extent;
   for (const DrawnFace& f : faces) {
-    for (const auto& [x, y] : f.corners) {
-      xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y),
-      ymax = std::max(ymax, y);
-    }
+    for (const auto& [x, y] : f.corners) extent.add(x, y);
   }
-  if (!(xmin < xmax && ymin < ymax && std::isfinite(xmax - xmin) && std::isfinite(ymax - ymin))) {
-    xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0;  // nothing finite to show
-  }
-  const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
-  const double scale = width_px / (xmax - xmin + 2.0 * margin);
-  const double height_px = (ymax - ymin + 2.0 * margin) * scale;
+  const output_text::SvgCanvas canvas(extent);
   AtomicFile output(file);
   std::ostream& out = output.stream();
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
-      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
-      << "\">\n"
-      << "  <title>t = " << number(time) << " s</title>\n"
-      << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  canvas.open(out, time);
   for (const DrawnFace& f : faces) {
     const Block3dState& b = blocks[f.block];
     const bool is_tracked = std::find(tracked.begin(), tracked.end(), b.id) != tracked.end();
@@ -226,8 +209,7 @@ void write_svg(const fs::path& file, std::span<const Block3dState> blocks,
     bool finite = true;
     for (const auto& [x, y] : f.corners) {
       finite = finite && std::isfinite(x) && std::isfinite(y);
-      points += (points.empty() ? "" : " ") + pixel((x - xmin + margin) * scale) + ',' +
-                pixel((ymax + margin - y) * scale);
+      points += (points.empty() ? "" : " ") + canvas.point(x, y);
     }
     if (!finite) continue;
     out << "  <polygon fill=\"" << shaded(rgb, f.shade)
@@ -268,22 +250,14 @@ ordered_json predicates_json(const kernel::PredicateCounters& c) {
           {"by_kind", std::move(by_kind)}};
 }
 
-std::size_t decimal_digits(std::size_t value) {
-  std::size_t digits = 1;
-  while (value >= 10) value /= 10, ++digits;
-  return digits;
-}
-
 // Writes the files of the header into one directory (created if missing).
 class Scene3dRecorder {
  public:
   Scene3dRecorder(const Scene3d& scene, fs::path dir) : dir_(std::move(dir)), track_(scene.track) {
     const double steps = std::ceil(scene.duration / scene.params.dt);
-    frame_digits_ =
-        std::max<std::size_t>(4, decimal_digits(static_cast<std::size_t>(steps) / scene.every + 1));
-    std::error_code ec;
-    fs::create_directories(dir_, ec);
-    if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
+    const std::size_t last_frame = static_cast<std::size_t>(steps) / scene.every + 1;
+    frame_digits_ = std::max<std::size_t>(4, output_text::decimal_digits(last_frame));
+    output_text::create_directory(dir_);
     tracks_.emplace(dir_ / "tracks.csv");
     tracks_->stream() << tracks_header << '\n';
     contacts_.emplace(dir_ / "contacts.csv");
@@ -313,9 +287,8 @@ class Scene3dRecorder {
                           << number(c.tangential_force) << ',' << mode_name(c.mode) << '\n';
     }
     if (!contacts_->stream()) throw OutputError("cannot write " + contacts_->target().string());
-    std::string index = std::to_string(frames_.size());
-    index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
-    const std::string name = "frame_" + index + ".vtp";
+    const std::string name =
+        "frame_" + output_text::frame_index(frames_.size(), frame_digits_) + ".vtp";
     write_frame(dir_ / name, blocks);
     frames_.emplace_back(simulation.time(), name);
   }
@@ -325,9 +298,7 @@ class Scene3dRecorder {
     contacts_->commit();
     output_text::write_pvd(dir_ / "frames.pvd", frames_);
     write_svg(dir_ / "final.svg", blocks, track_, frames_.empty() ? 0.0 : frames_.back().first);
-    AtomicFile summary_file(dir_ / "summary.json");
-    summary_file.stream() << summary.dump(2) << '\n';
-    summary_file.commit();
+    output_text::write_json(dir_ / "summary.json", summary);
   }
 
   std::size_t frames() const noexcept { return frames_.size(); }
@@ -372,29 +343,18 @@ ordered_json run3d_summary(const Scene3d& scene, const Run3dReport& report) {
   out["step_cuts"] = report.step_cuts;
   out["predicates"] = predicates_json(report.predicates);
   out["max_penetration"] = report.max_penetration;
-  ordered_json ids = ordered_json::array();
-  for (const Block3dSpec& b : scene.blocks) ids.push_back(b.id);
-  out["blocks"] = std::move(ids);
-  out["tracked"] = scene.track;
-  out["frames"] = report.frames;
+  output_text::add_blocks_and_frames(out, scene.blocks, scene.track, report.frames);
   return out;
 }
 
 Run3dReport run_scene3d(const Scene3d& scene, const Run3dOptions& options) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  clock::duration output_time{};
-  const auto timed = [&](auto&& write) {
-    const auto t0 = clock::now();
-    write();
-    output_time += clock::now() - t0;
-  };
+  RunClock clock;
   Run3dReport report;
   Dda3d simulation(scene.blocks, scene.law, scene.params);
   std::optional<Scene3dRecorder> recorder;
-  if (!options.out_dir.empty()) timed([&] { recorder.emplace(scene, options.out_dir); });
+  if (!options.out_dir.empty()) clock.output([&] { recorder.emplace(scene, options.out_dir); });
   const auto record = [&] {
-    if (recorder) timed([&] { recorder->record(simulation); });
+    if (recorder) clock.output([&] { recorder->record(simulation); });
   };
   report.initial = simulation.energies();
   report.max_penetration = penetration(simulation);
@@ -422,14 +382,10 @@ Run3dReport run_scene3d(const Scene3d& scene, const Run3dOptions& options) {
   report.final = simulation.energies();
   report.step_cuts = simulation.last_step().cuts;
   report.predicates = simulation.predicate_counters();
-  if (!recorder) {
-    report.simulation_seconds = std::chrono::duration<double>(clock::now() - start).count();
-    return report;
-  }
+  report.simulation_seconds = clock.simulation_seconds();
+  report.output_seconds = clock.output_seconds();
+  if (!recorder) return report;
   report.frames = recorder->frames();
-  const auto t0 = clock::now();
-  report.simulation_seconds = std::chrono::duration<double>(t0 - start - output_time).count();
-  report.output_seconds = std::chrono::duration<double>(output_time).count();
   recorder->finish(simulation.blocks(), run3d_summary(scene, report));
   return report;
 }

@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <utility>
 
 #include "output_text.hpp"
+#include "run_clock.hpp"
 #include "rockcontact/dynamics/io/checkpoint.hpp"
 
 namespace rockcontact::dynamics {
@@ -20,7 +19,7 @@ namespace fs = std::filesystem;
 using output_text::csv_field;
 using output_text::number;
 using output_text::open_piece;
-using output_text::pixel;
+using output_text::open_points;
 using output_text::write_pvd;
 using output_text::xml_escape;
 
@@ -30,9 +29,7 @@ void write_vtp(const fs::path& file, std::span<const BlockState> blocks) {
   AtomicFile output(file);
   std::ostream& out = output.stream();
   open_piece(out, points, 0, blocks.size());
-  out << "      <Points>\n"
-      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-         "format=\"ascii\">\n";
+  open_points(out);
   for (const BlockState& b : blocks) {
     for (const kernel::Point2& p : b.vertices) {
       out << "          " << number(p.x) << ' ' << number(p.y) << " 0\n";
@@ -90,9 +87,7 @@ void write_contact_vtp(const fs::path& file, std::span<const ContactRow> rows) {
   AtomicFile output(file);
   std::ostream& out = output.stream();
   open_piece(out, rows.size(), rows.size(), 0);
-  out << "      <Points>\n"
-      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-         "format=\"ascii\">\n";
+  open_points(out);
   for (const ContactRow& r : rows) out << "          " << number(r.x) << ' ' << number(r.y) << " 0\n";
   out << "        </DataArray>\n      </Points>\n      <Verts>\n"
       << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
@@ -129,34 +124,21 @@ bool all_finite(std::span<const kernel::Point2> polygon) {
 void write_svg(const fs::path& file, std::span<const BlockState> blocks,
                std::span<const std::vector<kernel::Point2>> start, double start_time,
                std::span<const std::string> tracked, double time) {
-  constexpr double width_px = 800.0;
-  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
-  double xmax = -xmin, ymax = -xmin;
-  const auto extend = [&](std::span<const kernel::Point2> polygon) {
-    for (const kernel::Point2& p : polygon) {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-      ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-    }
-  };
-  for (const BlockState& b : blocks) extend(b.vertices);
-  for (const auto& polygon : start) extend(polygon);
-  if (!(xmin < xmax)) xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0;  // nothing finite to show
-  const double margin = 0.05 * std::max(xmax - xmin, ymax - ymin);
-  const double scale = width_px / (xmax - xmin + 2.0 * margin);
-  const double height_px = (ymax - ymin + 2.0 * margin) * scale;
+  output_text::Extent extent;
+  for (const BlockState& b : blocks) {
+    for (const kernel::Point2& p : b.vertices) extent.add(p.x, p.y);
+  }
+  for (const auto& polygon : start) {
+    for (const kernel::Point2& p : polygon) extent.add(p.x, p.y);
+  }
+  const output_text::SvgCanvas canvas(extent);
   AtomicFile output(file);
   std::ostream& out = output.stream();
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pixel(width_px) << "\" height=\""
-      << pixel(height_px) << "\" viewBox=\"0 0 " << pixel(width_px) << ' ' << pixel(height_px)
-      << "\">\n"
-      << "  <title>t = " << number(time) << " s</title>\n"
-      << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  canvas.open(out, time);
   const auto points = [&](std::span<const kernel::Point2> polygon) {
     std::string text;
     for (std::size_t i = 0; i < polygon.size(); ++i) {
-      text += (i == 0 ? "" : " ") + pixel((polygon[i].x - xmin + margin) * scale) + ',' +
-              pixel((ymax + margin - polygon[i].y) * scale);
+      text += (i == 0 ? "" : " ") + canvas.point(polygon[i].x, polygon[i].y);
     }
     return text;
   };
@@ -199,22 +181,12 @@ ordered_json energies_json(const Energies& e) {
   return out;
 }
 
-std::size_t decimal_digits(std::size_t value) {
-  std::size_t digits = 1;
-  while (value >= 10) value /= 10, ++digits;
-  return digits;
-}
-
 }  // namespace
 
 SceneRecorder::SceneRecorder(const Scene& scene, fs::path dir)
     : dir_(std::move(dir)), track_(scene.track) {
-  const std::size_t steps = step_count(scene);
-  const std::size_t last_frame = steps / scene.every + (steps % scene.every == 0 ? 0 : 1);
-  frame_digits_ = std::max<std::size_t>(4, decimal_digits(last_frame));
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
-  if (ec) throw OutputError("cannot create the directory " + dir_.string() + ": " + ec.message());
+  frame_digits_ = output_text::frame_digits(step_count(scene), scene.every);
+  output_text::create_directory(dir_);
   tracks_.emplace(dir_ / "tracks.csv");
   tracks_->stream() << "t,block,x,y,rotation,vx,vy,omega\n";
   energies_.emplace(dir_ / "energies.csv");
@@ -264,8 +236,7 @@ void SceneRecorder::record(double time, std::span<const BlockState> blocks,
                         << state_names[r.state] << '\n';
   }
   if (!contacts_->stream()) throw OutputError("cannot write " + contacts_->target().string());
-  std::string index = std::to_string(frames_.size());
-  index.insert(0, frame_digits_ - std::min(frame_digits_, index.size()), '0');
+  const std::string index = output_text::frame_index(frames_.size(), frame_digits_);
   write_vtp(dir_ / ("frame_" + index + ".vtp"), blocks);
   if (frames_.empty()) {
     for (const BlockState& b : blocks) start_.push_back(b.vertices);
@@ -286,9 +257,7 @@ void SceneRecorder::finish(std::span<const BlockState> blocks, const ordered_jso
   }
   write_svg(dir_ / "final.svg", blocks, start_, frames_.empty() ? 0.0 : frames_.front().time,
             track_, frames_.empty() ? 0.0 : frames_.back().time);
-  AtomicFile summary_file(dir_ / "summary.json");
-  summary_file.stream() << summary.dump(2) << '\n';
-  summary_file.commit();
+  output_text::write_json(dir_ / "summary.json", summary);
 }
 
 ordered_json run_summary(const Scene& scene, const RunReport& report) {
@@ -331,18 +300,12 @@ ordered_json run_summary(const Scene& scene, const RunReport& report) {
                      {"ratio", report.balance.empty() ? 0.0 : report.balance.back().second},
                      {"history", std::move(history)}};
   }
-  ordered_json ids = ordered_json::array();
-  for (const BlockSpec& b : scene.blocks) ids.push_back(b.id);
-  out["blocks"] = std::move(ids);
-  out["tracked"] = scene.track;
-  out["frames"] = report.frames;
+  output_text::add_blocks_and_frames(out, scene.blocks, scene.track, report.frames);
   return out;
 }
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  clock::duration output_time{};
+  RunClock clock;
   RunReport report;
   if (options.checkpoint_every > 0 && options.out_dir.empty()) {
     throw std::invalid_argument("run_scene: checkpoints need an output directory");
@@ -357,16 +320,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
                             : Dda2d(scene.blocks, scene.law, scene.params);
   report.equilibrium = simulation.initial_equilibrium();
   std::optional<SceneRecorder> recorder;
-  const auto timed = [&](auto&& write) {
-    const auto t0 = clock::now();
-    write();
-    output_time += clock::now() - t0;
-  };
   const bool static_analysis = scene.params.analysis == Analysis::static_equilibrium;
   const auto record = [&] {
     if (static_analysis) report.balance.emplace_back(simulation.steps(), simulation.balance_ratio());
-    if (recorder) timed([&] { recorder->record(simulation.time(), simulation.blocks(), simulation.contacts(),
-                                        simulation.energies()); });
+    if (!recorder) return;
+    clock.output([&] {
+      recorder->record(simulation.time(), simulation.blocks(), simulation.contacts(),
+                       simulation.energies());
+    });
   };
   // Fills the report from the simulation as it stands and completes the files.
   const auto conclude = [&] {
@@ -377,19 +338,15 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     report.critical_time_step = simulation.critical_time_step();
     report.critical_time_step_source = simulation.critical_time_step_source();
     report.predicates = simulation.predicate_counters();
-    if (!recorder) {
-      report.simulation_seconds = std::chrono::duration<double>(clock::now() - start).count();
-      return;
-    }
+    report.simulation_seconds = clock.simulation_seconds();
+    report.output_seconds = clock.output_seconds();
+    if (!recorder) return;
     report.frames = recorder->frames();
-    const auto t0 = clock::now();
-    report.simulation_seconds = std::chrono::duration<double>(t0 - start - output_time).count();
-    report.output_seconds = std::chrono::duration<double>(output_time).count();
-    recorder->finish(simulation.blocks(), run_summary(scene, report));
-    report.output_seconds += std::chrono::duration<double>(clock::now() - t0).count();
+    clock.output([&] { recorder->finish(simulation.blocks(), run_summary(scene, report)); });
+    report.output_seconds = clock.output_seconds();  // the summary's, and writing it
   };
 
-  if (!options.out_dir.empty()) timed([&] { recorder.emplace(scene, options.out_dir); });
+  if (!options.out_dir.empty()) clock.output([&] { recorder.emplace(scene, options.out_dir); });
   report.initial = resume ? resume->initial : simulation.energies();
   record();
   if (options.observer) options.observer(simulation);
@@ -398,7 +355,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     for (std::size_t s = simulation.steps() + 1; s <= total; ++s) {
       simulation.step();
       if (options.checkpoint_every > 0 && s % options.checkpoint_every == 0) {
-        timed([&] {
+        clock.output([&] {
           write_checkpoint(options.out_dir / "checkpoint.json", scene,
                            {scene.digest, report.initial, simulation.snapshot()});
         });

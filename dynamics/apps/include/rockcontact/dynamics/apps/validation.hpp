@@ -12,6 +12,8 @@
 //   §5.3 vertex on a 0.01 m edge / neighbour  bounded energy, the block rebounds
 //   seed 001 §6.1 wedge (examples/scenes3d)   factor of safety vs limit equilibrium; the
 //                                              frictionless slide vs ½ g sin ψ t²
+//   seed 003 §6 prisms (examples/scenes_cdem)  first touch at 1/3 s, momentum, velocity exchange
+//   two equal bars, two-scale and penalty      contact time vs 2 L / c, the striker at rest
 //
 // A run the engine stops (StabilityError) fails its rows with the engine's message.
 

@@ -11,6 +11,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
@@ -119,5 +121,61 @@ class UniqueIds {
 // The material at `path` ("materials.<name>"): {"density", "youngs_modulus", "poisson_ratio"},
 // the same in 2D and 3D scenes.
 Material read_material(const JsonReader& reader, const nlohmann::json& value, const std::string& path);
+
+// The time step and duration of a scene's "time" member, the same in every scene format.
+struct SceneTime {
+  double dt = 0.0;        // s
+  double duration = 0.0;  // s
+};
+
+// Reads the "time" member `value`, an object of `fields` (which hold "dt" and "duration", and
+// may hold more for the caller to read): dt and duration finite and > 0, duration / dt at most
+// 1e12 steps (a run of more would take weeks, and its step count must fit a size_t). Fails at
+// "time", "time.dt" or "time.duration".
+SceneTime read_scene_time(const JsonReader& reader, const nlohmann::json& value,
+                          std::string_view expected, std::span<const JsonField> fields);
+
+// The material a block names: the string `value` at `path`, looked up in `materials`; fails at
+// `path` for another type or an unknown name, listing the names there are.
+template <class Material>
+const Material& find_material(const JsonReader& reader, const nlohmann::json& value,
+                              const std::string& path, std::string_view expected,
+                              const std::map<std::string, Material, std::less<>>& materials) {
+  const std::string& name = reader.string(value, path, expected);
+  const auto it = materials.find(name);
+  if (it == materials.end()) {
+    std::string names;
+    for (const auto& [known, m] : materials) names += (names.empty() ? "" : ", ") + known;
+    reader.fail(path, "unknown material \"" + name + "\"; expected one of the scene's " +
+                          "materials (" + (names.empty() ? "none defined" : names) + ")");
+  }
+  return it->second;
+}
+
+// The "output" member of a scene, the same in every scene format.
+struct SceneOutput {
+  std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
+  std::size_t every = 100;         // record every `every` steps
+};
+
+// Reads document["output"] (optional): {"track": [block ids], "every": steps >= 1 (default
+// 100)}. `ids` are the scene's block ids; without "track", the blocks of `default_track` are
+// tracked (every block that is not fixed). Fails at "output.every" or at "output.track[i]" for
+// an id no block has or one listed twice.
+SceneOutput read_scene_output(const JsonReader& reader, const nlohmann::json& document,
+                              std::span<const std::string> ids,
+                              std::vector<std::string> default_track);
+
+// The same for a scene's block specifications (2D, 3D or CDEM: each with an `id` and `fixed`).
+template <class BlockSpecs>
+SceneOutput read_scene_output(const JsonReader& reader, const nlohmann::json& document,
+                              const BlockSpecs& blocks) {
+  std::vector<std::string> ids, movable;
+  for (const auto& b : blocks) {
+    ids.push_back(b.id);
+    if (!b.fixed) movable.push_back(b.id);
+  }
+  return read_scene_output(reader, document, ids, std::move(movable));
+}
 
 }  // namespace rockcontact::dynamics

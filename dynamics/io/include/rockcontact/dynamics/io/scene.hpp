@@ -131,6 +131,9 @@ std::uint64_t scene_digest(const nlohmann::json& document);
 // 10001 because of the decimal's rounding). The run ends at steps * dt >= duration.
 std::size_t step_count(const Scene& scene);
 
+// The same rule for a `duration` covered by steps of `dt` (s), shared by every scene format.
+std::size_t step_count(double duration, double dt);
+
 // Mean length of all edges of all blocks, m.
 double mean_edge_length(std::span<const BlockSpec> blocks);
 
