@@ -212,7 +212,7 @@ struct Patch {
 
 // A penalty contact of a boundary node with a target block's edge.
 struct PenaltyContact {
-  std::uint32_t node = 0, a = 0, b = 0, edge = 0;
+  std::uint32_t node = 0, a = 0, b = 0;
   std::uint32_t main_block = 0, target_block = 0;
   double lambda = 0.0;
   double depth = 0.0;        // m, > 0 inside
@@ -314,7 +314,7 @@ struct Cdem::Impl {
   void follow_sliding_ties(double t);
   void remove_separated(double t);
   void solve_ties(double h, double t);
-  void apply_tie(const Tie& tie, const Vec2& f);
+  void apply_node_edge_force(std::uint32_t node, std::uint32_t a, std::uint32_t b, double lambda, const Vec2& f);
   Vec2 edge_normal(const Tie& tie) const;
 
   void initial_ties();
@@ -1278,7 +1278,7 @@ void Cdem::Impl::penalty_forces(double t) {
             const double lambda = dot(r, d) / (length * length);
             if (depth <= 0.0 || depth > tol || lambda < 0.0 || lambda > 1.0) continue;
             if (!best || depth < best->depth) {
-              best = PenaltyContact{q, a, b, k, bi, ti, lambda, depth, 0.0, boundary_share[q] * params.thickness};
+              best = PenaltyContact{q, a, b, bi, ti, lambda, depth, 0.0, boundary_share[q] * params.thickness};
             }
           }
           if (best) found.push_back(*best);
@@ -1323,14 +1323,7 @@ void Cdem::Impl::penalty_forces(double t) {
     const double length = std::hypot(d[0], d[1]);
     const Vec2 n{d[1] / length, -d[0] / length}, tg{d[0] / length, d[1] / length};
     const double fn = params.contact.kn * c.depth;
-    const Vec2 f{fn * n[0] + c.shear * tg[0], fn * n[1] + c.shear * tg[1]};
-    const double wa = 1.0 - c.lambda, wb = c.lambda;
-    ax[c.node] += inv_mass[c.node] * f[0];
-    ay[c.node] += inv_mass[c.node] * f[1];
-    ax[c.a] -= wa * inv_mass[c.a] * f[0];
-    ay[c.a] -= wa * inv_mass[c.a] * f[1];
-    ax[c.b] -= wb * inv_mass[c.b] * f[0];
-    ay[c.b] -= wb * inv_mass[c.b] * f[1];
+    apply_node_edge_force(c.node, c.a, c.b, c.lambda, {fn * n[0] + c.shear * tg[0], fn * n[1] + c.shear * tg[1]});
   }
 }
 
@@ -1387,14 +1380,16 @@ void Cdem::Impl::remove_separated(double t) {
   ties.erase(end, ties.end());
 }
 
-void Cdem::Impl::apply_tie(const Tie& tie, const Vec2& f) {
-  const double wa = 1.0 - tie.lambda, wb = tie.lambda;
-  ax[tie.node] += inv_mass[tie.node] * f[0];
-  ay[tie.node] += inv_mass[tie.node] * f[1];
-  ax[tie.a] -= wa * inv_mass[tie.a] * f[0];
-  ay[tie.a] -= wa * inv_mass[tie.a] * f[1];
-  ax[tie.b] -= wb * inv_mass[tie.b] * f[0];
-  ay[tie.b] -= wb * inv_mass[tie.b] * f[1];
+// The force f on `node` and -f on the edge's point (1 - lambda) a + lambda b, spread to a and b by
+// the shape functions, as accelerations.
+void Cdem::Impl::apply_node_edge_force(std::uint32_t node, std::uint32_t a, std::uint32_t b, double lambda,
+                                       const Vec2& f) {
+  ax[node] += inv_mass[node] * f[0];
+  ay[node] += inv_mass[node] * f[1];
+  ax[a] -= (1.0 - lambda) * inv_mass[a] * f[0];
+  ay[a] -= (1.0 - lambda) * inv_mass[a] * f[1];
+  ax[b] -= lambda * inv_mass[b] * f[0];
+  ay[b] -= lambda * inv_mass[b] * f[1];
 }
 
 // The clone nodes after the onset (seed 003 §4.2, eq. 6-11). A tie keeps the node on the edge's
@@ -1432,7 +1427,7 @@ void Cdem::Impl::solve_ties(double h, double t) {
       if (tie.sliding) {
         const Vec2 n = edge_normal(tie), tg{-n[1], n[0]};
         tie.force = {tie.slide_force * tg[0], tie.slide_force * tg[1]};
-        apply_tie(tie, tie.force);
+        apply_node_edge_force(tie.node, tie.a, tie.b, tie.lambda, tie.force);
       }
     }
     for (int sweep = 0; sweep < tie_sweeps; ++sweep) {
@@ -1452,7 +1447,7 @@ void Cdem::Impl::solve_ties(double h, double t) {
           const double dn = dot(df, n);
           df = {dn * n[0], dn * n[1]};
         }
-        apply_tie(tie, df);
+        apply_node_edge_force(tie.node, tie.a, tie.b, tie.lambda, df);
         tie.force[0] += df[0];
         tie.force[1] += df[1];
         change = std::max(change, std::hypot(df[0], df[1]));
