@@ -25,6 +25,10 @@ using Vec2 = std::array<double, 2>;
 // as in the DDA engines, so that a run starting at rest has a budget.
 constexpr double energy_floor_speed = 1.0e-3;
 constexpr std::size_t energy_check_every = 16;
+// Below this many elements (nodes) a step's loops run on one thread: a parallel region costs a
+// few microseconds to open, and its threads spin for busy cores; a mesh of a few hundred
+// elements steps in about as long.
+constexpr std::int64_t parallel_threshold = 4096;
 // Gauss-Seidel sweeps over the clone-node ties of one step, and the rounds of the separation
 // and slip decisions (each round re-solves the ties that remain).
 constexpr int tie_sweeps = 60;
@@ -1215,7 +1219,7 @@ void Cdem::Impl::initial_ties() {
 // patch gives its corners their forces.
 void Cdem::Impl::internal_forces(bool incremental) {
   const auto count = static_cast<std::int64_t>(elements.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (count >= parallel_threshold)
   for (std::int64_t ei = 0; ei < count; ++ei) {
     const auto e = static_cast<std::size_t>(ei);
     // Fixed blocks are at rest, unstressed and force-free.
@@ -1229,7 +1233,7 @@ void Cdem::Impl::internal_forces(bool incremental) {
   }
   const auto nodes = static_cast<std::int64_t>(node_total());
   const double gx = params.gravity[0], gy = params.gravity[1];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nodes >= parallel_threshold)
   for (std::int64_t ii = 0; ii < nodes; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (inv_mass[i] == 0.0) {
