@@ -259,6 +259,18 @@ BOOST_AUTO_TEST_CASE(a_spinning_block_keeps_its_area) {
   BOOST_TEST(std::abs(cdem.block_state(0).omega / 10.0 - 1.0) <= 1e-5);
 }
 
+// A node thrown to infinity (found by fuzz_scene_cdem_json: a material so soft that a 100 s step
+// is stable, a block at -1e308 m/s) stops the run with CdemStabilityError; the contact search
+// had turned the infinite motion into a grid of 2^63 cells.
+BOOST_AUTO_TEST_CASE(a_runaway_motion_stops_the_run) {
+  const dyn::CdemMaterial soft{2700.0, 1e-20, 0.25};
+  auto a = block("a", {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}, 2.0, soft);
+  a.velocity = {-1e308, 0.0, 0.0};
+  auto b = block("b", {{2.0, 0.0}, {3.0, 0.0}, {2.0, 1.0}}, 2.0, soft);
+  dyn::Cdem cdem({a, b}, params(100.0));
+  BOOST_CHECK_THROW(cdem.step(), dyn::CdemStabilityError);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(bad_input)

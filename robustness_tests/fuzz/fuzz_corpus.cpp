@@ -13,7 +13,12 @@
 //   OUT_DIR/pairs_json/   the `pairs` examples (examples/pairs/*.json);
 //   OUT_DIR/scene_json/   the scenes (examples/scenes/*.json), plus a region whose joint spacing
 //                         (1e-9 m in a 1 km square) the reader must reject quickly;
-//   OUT_DIR/scene3d_json/ the 3D scenes and cut documents (examples/scenes3d/*.json).
+//   OUT_DIR/scene3d_json/ the 3D scenes and cut documents (examples/scenes3d/*.json);
+//   OUT_DIR/scene_cdem_json/ the CDEM scenes (examples/scenes_cdem/*.json) and the CLI tests'
+//                         (dynamics/tests/data/scenes/cdem_*.json: one valid, one without a
+//                         mesh, one clockwise), plus a block resting under gravity on a fixed
+//                         base by the penalty law, and two blocks meeting with subdivided
+//                         elements and exact touch predicates, so that both laws have seeds.
 //
 // The seed of the generators is fixed, so the corpus is the same on every run.
 
@@ -123,10 +128,11 @@ std::size_t write_handmade(const fs::path& dir) {
   return seeds.size();
 }
 
-std::size_t copy_json(const fs::path& from, const fs::path& to) {
+// The .json files of `from` whose names start with `prefix`.
+std::size_t copy_json(const fs::path& from, const fs::path& to, std::string_view prefix = "") {
   std::size_t copied = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
-    if (entry.path().extension() != ".json") continue;
+    if (entry.path().extension() != ".json" || !entry.path().filename().string().starts_with(prefix)) continue;
     fs::copy_file(entry.path(), to / entry.path().filename(), fs::copy_options::overwrite_existing);
     ++copied;
   }
@@ -147,7 +153,7 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1];
   const std::size_t per_family = argc == 3 ? std::strtoull(argv[2], nullptr, 10) : 16;
   const fs::path examples = ROCKCONTACT_EXAMPLES_DIR;
-  for (const char* dir : {"pair_kernel", "pair_kernel3d", "pairs_json", "scene_json", "scene3d_json"}) {
+  for (const char* dir : {"pair_kernel", "pair_kernel3d", "pairs_json", "scene_json", "scene3d_json", "scene_cdem_json"}) {
     fs::create_directories(out / dir);
   }
 
@@ -164,7 +170,33 @@ int main(int argc, char** argv) {
 )");
   ++scenes;
   const std::size_t scenes3d = copy_json(examples / "scenes3d", out / "scene3d_json");
-  std::printf("fuzz_corpus: %zu pair inputs, %zu 3D pair inputs, %zu pairs documents, %zu scenes, %zu 3D scenes in %s\n",
-              pairs, pairs3d, pair_files, scenes, scenes3d, out.c_str());
+  const std::size_t scenes_cdem = copy_json(examples / "scenes_cdem", out / "scene_cdem_json") +
+                                  copy_json(ROCKCONTACT_TEST_SCENES_DIR, out / "scene_cdem_json", "cdem_") + 2;
+  write_text(out / "scene_cdem_json" / "penalty_on_base.json",
+             R"({"solver": "cdem", "time": {"dt": 1e-6, "duration": 1e-3}, "gravity": [0, -9.81],
+ "plane": "stress", "thickness": 0.5, "damping": 10,
+ "materials": {"rock": {"density": 2700, "youngs_modulus": 1e9, "poisson_ratio": 0.25}},
+ "contact": {"law": "penalty", "kn": 1e7, "kt": 5e6, "friction_angle_deg": 30, "cohesion": 1e3, "policy": "checked",
+             "tensile_strength": 1e3, "search_tolerance": 1e-3},
+ "blocks": [{"id": "base", "material": "rock", "vertices": [[0, -0.1], [0.4, -0.1], [0.4, 0], [0, 0]],
+             "fixed": true, "mesh": {"max_edge": 0.1}},
+            {"id": "block", "material": "rock", "vertices": [[0.1, 0], [0.2, 0], [0.2, 0.1], [0.1, 0.1]],
+             "velocity": [0.1, -0.01, 0], "mesh": {"max_edge": 0.05}}],
+ "output": {"every": 5}}
+)");
+  write_text(out / "scene_cdem_json" / "subdivide_exact.json",
+             R"({"format": "rockcontact-scene/1", "dimension": 2, "solver": "cdem",
+ "time": {"dt": 2e-6, "duration": 4e-5}, "gravity": [0, 0],
+ "materials": {"rock": {"density": 2700, "youngs_modulus": 4e10, "poisson_ratio": 0.25}},
+ "contact": {"law": "two-scale", "subdivide": true, "policy": "exact", "search_tolerance": 5e-3},
+ "blocks": [{"id": "i", "material": "rock", "vertices": [[0, 0], [0.1, 0.04], [0, 0.1]],
+             "velocity": [5, 0, 1], "mesh": {"max_edge": 0.05}},
+            {"id": "j", "material": "rock", "vertices": [[0.1001, 0], [0.2, 0], [0.2, 0.1], [0.1001, 0.1]],
+             "mesh": {"max_edge": 0.05}}],
+ "output": {"track": ["i"], "every": 1}}
+)");
+  std::printf("fuzz_corpus: %zu pair inputs, %zu 3D pair inputs, %zu pairs documents, %zu scenes, %zu 3D scenes, "
+              "%zu CDEM scenes in %s\n",
+              pairs, pairs3d, pair_files, scenes, scenes3d, scenes_cdem, out.c_str());
   return 0;
 }

@@ -39,6 +39,8 @@ constexpr double separation_noise = 1.0e-9;
 constexpr double flat_contact_cosine = 0.5;
 // The most parts per edge a subdivided element is cut into (seed 003 §5), k² sub-triangles.
 constexpr int max_subdivision = 8;
+// The most substeps a patch takes per step (an element flattened to a sliver would ask for more).
+constexpr double max_substeps = 1000.0;
 // A touch that leaves no contact: at most this many touch batches in one step (a guard against a
 // node that touches, separates and touches again forever inside one step).
 constexpr int max_touch_batches = 10000;
@@ -616,6 +618,14 @@ std::vector<Touch> Cdem::Impl::find_touches(double remaining, bool resting) cons
     }
   }
   if (edges.empty() || blocks.size() < 2) return {};
+  // A runaway motion (a node thrown out to infinity, or so far that the grid's cell index would
+  // not fit) stops the run here, before the grid is built, as the monitor would after the step.
+  double extent = 0.0;
+  for (const EdgeRef& r : edges) extent = std::max({extent, std::abs(r.x_lo), std::abs(r.x_hi), std::abs(r.y_lo), std::abs(r.y_hi)});
+  if (!std::isfinite(extent) || !(extent / cell < 0x1p60)) {
+    throw CdemStabilityError("a boundary node's motion over the step reaches " +
+                             number(extent) + " m, beyond what the contact search can follow: the motion ran away");
+  }
   // Each edge goes into every cell its box covers; with the cell as large as the largest box,
   // that is at most four.
   const auto cell_of = [cell](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
@@ -911,7 +921,9 @@ int Cdem::Impl::create_patch(std::uint32_t main_node, std::uint32_t a, std::uint
     min_altitude_sub = std::min(min_altitude_sub, 2.0 * area / edge);
     for (std::uint32_t v : t) patch.m[v] += block.spec.material.density * params.thickness * area / 3.0;
   }
-  patch.substeps = static_cast<int>(std::ceil(params.dt / (0.9 * min_altitude_sub / c)));
+  const double substeps = std::ceil(params.dt / (0.9 * min_altitude_sub / c));
+  if (!(substeps >= 1.0 && substeps <= max_substeps)) return -1;  // a flattened element: stay coarse
+  patch.substeps = static_cast<int>(substeps);
   // The free sub-nodes' mass comes from the corners by the weights, so that the element's mass,
   // momentum and centre of mass stay what they were; the driven sub-nodes have no inertia of their
   // own (it stays lumped at the corners).
@@ -1577,7 +1589,7 @@ void Cdem::Impl::update_rotations() {
 void Cdem::Impl::monitor() const {
   for (std::size_t i = 0; i < node_total(); ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(vx[i]) || !std::isfinite(vy[i])) {
-      throw CdemStabilityError("t = " + number(time) + " s: a non-finite position or velocity at a node of " +
+      throw CdemStabilityError("a non-finite position or velocity at a node of " +
                                block_name(blocks[node_block[i]].spec.id));
     }
   }
@@ -1587,13 +1599,13 @@ void Cdem::Impl::monitor() const {
   const CdemEnergies e = energies();
   const double budget = 2.0 * (start.kinetic + start.strain + max_gravitational + energy_floor);
   if (e.total() - start.total() > budget) {
-    throw CdemStabilityError("t = " + number(time) + " s: the energy grew by " + number(e.total() - start.total()) +
+    throw CdemStabilityError("the energy grew by " + number(e.total() - start.total()) +
                              " J, beyond twice what the run can draw on (" + number(budget / 2.0) +
                              " J): the integration is unstable");
   }
   for (const PenaltyContact& c : penalty) {
     if (c.depth > 0.5 * min_altitude) {
-      throw CdemStabilityError("t = " + number(time) + " s: a node of " + block_name(blocks[c.main_block].spec.id) +
+      throw CdemStabilityError("a node of " + block_name(blocks[c.main_block].spec.id) +
                                " is " + number(c.depth) + " m inside " + block_name(blocks[c.target_block].spec.id) +
                                ", beyond half the smallest element; kn is too small for the load");
     }
