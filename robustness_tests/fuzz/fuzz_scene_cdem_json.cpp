@@ -210,23 +210,7 @@ void run_engine(const rd::SceneCdem& scene) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static rf::ScratchFile scratch("fuzz_scene_cdem_json");
-  const std::filesystem::path& file = scratch.write({data, size});
-  rd::SceneCdem scene;
-  try {
-    scene = rd::read_scene_cdem_file(file);
-  } catch (const rd::InputError& e) {
-    rf::check_input_error(target, e, file);
-    return 0;
-  } catch (const std::exception& e) {
-    rf::fail(target, std::string("an exception other than InputError: ") + e.what());
-  }
-  check_accepted(scene);
-  if (small(scene)) {
-    try {
-      run_engine(scene);
-    } catch (const std::exception& e) {
-      rf::fail(target, std::string("the engine threw other than invalid_argument or CdemStabilityError: ") + e.what());
-    }
-  }
-  return 0;
+  return rf::scene_input(
+      target, scratch, {data, size}, [](const std::filesystem::path& file) { return rd::read_scene_cdem_file(file); },
+      check_accepted, small, run_engine, "invalid_argument or CdemStabilityError");
 }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <span>
@@ -62,6 +63,34 @@ inline void check_input_error(std::string_view target, const dynamics::InputErro
   if (e.source() != file.string() || what.substr(0, prefix.size()) != prefix || what.size() <= prefix.size()) {
     fail(target, "an InputError without the source, or without a problem: \"" + std::string(what) + "\"");
   }
+}
+
+// The scene targets' common course: the input read as a scene file (`read`); a reader error must
+// be a documented InputError, any other exception fails; an accepted scene is checked
+// (`check_accepted`) and, when `small`, run (`run`), whose exceptions other than the engine's
+// documented ones (`run` catches those) fail with `engine_errors` named.
+template <class Read, class Check, class Small, class Run>
+int scene_input(std::string_view target, ScratchFile& scratch, std::span<const std::uint8_t> bytes, Read read,
+                Check check_accepted, Small small, Run run, std::string_view engine_errors) {
+  const std::filesystem::path& file = scratch.write(bytes);
+  decltype(read(file)) scene;
+  try {
+    scene = read(file);
+  } catch (const dynamics::InputError& e) {
+    check_input_error(target, e, file);
+    return 0;
+  } catch (const std::exception& e) {
+    fail(target, std::string("an exception other than InputError: ") + e.what());
+  }
+  check_accepted(scene);
+  if (small(scene)) {
+    try {
+      run(scene);
+    } catch (const std::exception& e) {
+      fail(target, "the engine threw other than " + std::string(engine_errors) + ": " + e.what());
+    }
+  }
+  return 0;
 }
 
 }  // namespace rockcontact::fuzz
