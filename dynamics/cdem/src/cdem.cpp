@@ -195,16 +195,15 @@ struct Patch {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::array<double, 3>> stress;
   std::array<double, 3> mass_moved{};  // taken from each corner to the free sub-nodes
-  // The forces the coarse step gives a, b, c and, at P, the main node (N): the sub-elements'
-  // forces on the driven nodes at the end of the step, the instant of the coarse force. Their
-  // impulse over the step (the substeps' trapezoid rule, as the free nodes' half kicks) differs
-  // from end force times h; the difference over the patch's life (the debt, in N: impulse / h)
-  // is paid when it merges (Cdem::Impl::tails), so momentum is conserved exactly. (The mean
-  // force over the step instead, which needs no debt, lags by h / 2 and gained 0.8 % of the
-  // seed example's kinetic energy, against 0.18 % with the end force.)
+  // The forces the coarse step gives a, b, c (N): the sub-elements' impulse on the driven nodes
+  // over the step (the substeps' trapezoid rule, as the free nodes' half kicks) divided by the
+  // step, their mean force, so that momentum is conserved exactly; it acts half a step late,
+  // which costs the energy accuracy docs/validation.md measures. The contact force on the main
+  // node is applied on the substeps themselves, except in the patch's first step, where the
+  // main node has already moved: there it gets the end force, and the difference from the
+  // step's impulse (the debt, N) is paid when the patch merges (Cdem::Impl::tails).
   std::array<Vec2, 3> corner_force{};
   Vec2 contact_force{};
-  std::array<Vec2, 3> corner_debt{};
   Vec2 contact_debt{};
   std::vector<double> driven_fx, driven_fy;  // on the driven nodes at the last substep
   // A patch made inside a step integrates the rest of it, from where the coarse nodes were then
@@ -262,7 +261,7 @@ struct Cdem::Impl {
   // The element of each boundary edge a -> b, keyed (a, b).
   std::unordered_map<std::uint64_t, std::uint32_t> boundary_element;
   std::vector<Patch> patches;
-  // The debts of merged patches (Patch::corner_debt), applied as forces in the next step.
+  // The debts of merged patches (Patch::contact_debt), applied as forces in the next step.
   std::vector<std::pair<std::uint32_t, Vec2>> tails;
   // Contacts.
   std::vector<Tie> ties;
@@ -1078,19 +1077,7 @@ void Cdem::Impl::run_patches(double h) {
         corner_mean[q][1] += patch.w[v][q] * iy[v] / h;
       }
     }
-    std::array<Vec2, 3> corner_end{};
-    Vec2 contact_end{};
-    for (std::size_t v = 0; v < count; ++v) {
-      if (patch.free[v]) continue;
-      if (v == patch.p) {
-        contact_end = {patch.driven_fx[v], patch.driven_fy[v]};
-        continue;
-      }
-      for (int q = 0; q < 3; ++q) {
-        corner_end[q][0] += patch.w[v][q] * patch.driven_fx[v];
-        corner_end[q][1] += patch.w[v][q] * patch.driven_fy[v];
-      }
-    }
+    const Vec2 contact_end{patch.driven_fx[patch.p], patch.driven_fy[patch.p]};
     for (int q = 0; q < 3; ++q) patch.corner_force[q] = corner_mean[q];
     if (patch.fresh) {
       patch.contact_force = contact_end;
@@ -1197,9 +1184,6 @@ void Cdem::Impl::merge_patch(int index) {
     after += 0.5 * mass[n] * (vx[n] * vx[n] + vy[n] * vy[n]);
   }
   onset_loss += before - after;
-  for (int q = 0; q < 3; ++q) {
-    tails.push_back({patch.corner[q], patch.corner_debt[q]});
-  }
   tails.push_back({patch.main_node, patch.contact_debt});
   stress[patch.element] = mean;
   patched[patch.element] = 0;
