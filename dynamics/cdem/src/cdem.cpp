@@ -44,6 +44,8 @@ constexpr double max_substeps = 1000.0;
 // A touch that leaves no contact: at most this many touch batches in one step (a guard against a
 // node that touches, separates and touches again forever inside one step).
 constexpr int max_touch_batches = 10000;
+// Up to this many blocks the touch search first tests the blocks' swept boxes pairwise.
+constexpr std::size_t block_pretest_limit = 64;
 
 double dot(const Vec2& a, const Vec2& b) { return a[0] * b[0] + a[1] * b[1]; }
 double cross(const Vec2& a, const Vec2& b) { return a[0] * b[1] - a[1] * b[0]; }
@@ -625,6 +627,28 @@ std::vector<Touch> Cdem::Impl::find_touches(double remaining, bool resting) cons
     throw CdemStabilityError("a boundary node's motion over the step reaches " +
                              number(extent) + " m, beyond what the contact search can follow: the motion ran away");
   }
+  // Blocks whose swept boxes meet no other block's need no grid: with a few blocks (the pairs test
+  // is quadratic) the search is left out for them, and for the whole step when they are apart.
+  std::vector<char> near(blocks.size(), 1);
+  if (blocks.size() <= block_pretest_limit) {
+    std::vector<std::array<double, 4>> box(blocks.size(), {std::numeric_limits<double>::infinity(),
+                                                          std::numeric_limits<double>::infinity(),
+                                                          -std::numeric_limits<double>::infinity(),
+                                                          -std::numeric_limits<double>::infinity()});
+    for (const EdgeRef& r : edges) {
+      auto& b = box[r.block];
+      b = {std::min(b[0], r.x_lo), std::min(b[1], r.y_lo), std::max(b[2], r.x_hi), std::max(b[3], r.y_hi)};
+    }
+    std::fill(near.begin(), near.end(), 0);
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      for (std::size_t j = i + 1; j < blocks.size(); ++j) {
+        if (blocks[i].spec.fixed && blocks[j].spec.fixed) continue;
+        if (box[i][2] < box[j][0] || box[j][2] < box[i][0] || box[i][3] < box[j][1] || box[j][3] < box[i][1]) continue;
+        near[i] = near[j] = 1;
+      }
+    }
+    if (std::find(near.begin(), near.end(), 1) == near.end()) return {};
+  }
   // Each edge goes into every cell its box covers; with the cell as large as the largest box,
   // that is at most four.
   const auto cell_of = [cell](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
@@ -634,12 +658,14 @@ std::vector<Touch> Cdem::Impl::find_touches(double remaining, bool resting) cons
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
   grid.reserve(edges.size() * 2);
   for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    if (!near[edges[e].block]) continue;
     for (std::int64_t i = cell_of(edges[e].x_lo); i <= cell_of(edges[e].x_hi); ++i)
       for (std::int64_t j = cell_of(edges[e].y_lo); j <= cell_of(edges[e].y_hi); ++j) grid[key_of(i, j)].push_back(e);
   }
   std::vector<Touch> touches;
   std::vector<std::uint32_t> seen;
   for (std::uint32_t bi = 0; bi < blocks.size(); ++bi) {
+    if (!near[bi]) continue;
     for (std::uint32_t q : blocks[bi].boundary) {
       const double qx1 = x[q] + remaining * vx[q], qy1 = y[q] + remaining * vy[q];
       const double lo_x = std::min(x[q], qx1), hi_x = std::max(x[q], qx1);
