@@ -137,6 +137,22 @@ void cst_forces(const double xs[3], const double ys[3], const double xe[3], cons
   }
 }
 
+// The area of triangle t (counter-clockwise: positive) and its smallest altitude (twice the area
+// over the longest edge), on coordinate arrays x, y.
+double triangle_area(const std::vector<double>& x, const std::vector<double>& y,
+                     const std::array<std::uint32_t, 3>& t) {
+  return 0.5 * ((x[t[1]] - x[t[0]]) * (y[t[2]] - y[t[0]]) - (y[t[1]] - y[t[0]]) * (x[t[2]] - x[t[0]]));
+}
+
+double smallest_altitude(const std::vector<double>& x, const std::vector<double>& y,
+                         const std::array<std::uint32_t, 3>& t) {
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    longest = std::max(longest, std::hypot(x[t[(k + 1) % 3]] - x[t[k]], y[t[(k + 1) % 3]] - y[t[k]]));
+  }
+  return 2.0 * triangle_area(x, y, t) / longest;
+}
+
 struct BlockData {
   CdemBlockSpec spec;
   std::uint32_t first_node = 0, node_count = 0;
@@ -327,7 +343,7 @@ struct Cdem::Impl {
   void initial_ties();
   CdemEnergies energies() const;
   void update_rotations();
-  void monitor() const;
+  void monitor();
   void step();
 };
 
@@ -404,19 +420,11 @@ void Cdem::Impl::add_block(CdemBlockSpec spec) {
   for (const auto& t : mesh.triangles) {
     const std::array<std::uint32_t, 3> g{t[0] + block.first_node, t[1] + block.first_node,
                                          t[2] + block.first_node};
-    const double area = 0.5 * ((x[g[1]] - x[g[0]]) * (y[g[2]] - y[g[0]]) -
-                               (y[g[1]] - y[g[0]]) * (x[g[2]] - x[g[0]]));
+    const double area = triangle_area(x, y, g);
     for (std::uint32_t n : g) mass[n] += m.density * params.thickness * area / 3.0;
     elements.push_back(g);
     element_block.push_back(index);
     block.view_triangles.push_back(t);
-    // The element's smallest altitude bounds its highest frequency (critical step below).
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t i = g[k], j = g[(k + 1) % 3];
-      longest = std::max(longest, std::hypot(x[j] - x[i], y[j] - y[i]));
-    }
-    min_altitude = std::min(min_altitude, 2.0 * area / longest);
   }
   for (std::uint32_t n : mesh.boundary) block.boundary.push_back(n + block.first_node);
   // Mass centre and the initial velocity field of a rigid motion (vx, vy, omega about it).
@@ -482,13 +490,9 @@ void Cdem::Impl::check_critical_step() {
   double omega_elements = 0.0;
   std::size_t worst = 0;
   for (std::size_t e = 0; e < elements.size(); ++e) {
-    const auto& g = elements[e];
-    const double area = 0.5 * ((x[g[1]] - x[g[0]]) * (y[g[2]] - y[g[0]]) - (y[g[1]] - y[g[0]]) * (x[g[2]] - x[g[0]]));
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, std::hypot(x[g[(k + 1) % 3]] - x[g[k]], y[g[(k + 1) % 3]] - y[g[k]]));
-    }
-    const double omega = 2.0 * blocks[element_block[e]].elasticity.wave_speed * longest / (2.0 * area);
+    const double altitude = smallest_altitude(x, y, elements[e]);
+    min_altitude = std::min(min_altitude, altitude);
+    const double omega = 2.0 * blocks[element_block[e]].elasticity.wave_speed / altitude;
     if (omega > omega_elements) {
       omega_elements = omega;
       worst = e;
@@ -937,13 +941,8 @@ int Cdem::Impl::create_patch(std::uint32_t main_node, std::uint32_t a, std::uint
   patch.m.assign(count, 0.0);
   double min_altitude_sub = std::numeric_limits<double>::infinity();
   for (const auto& t : patch.triangles) {
-    const double area = 0.5 * ((patch.x[t[1]] - patch.x[t[0]]) * (patch.y[t[2]] - patch.y[t[0]]) -
-                               (patch.y[t[1]] - patch.y[t[0]]) * (patch.x[t[2]] - patch.x[t[0]]));
-    double edge = 0.0;
-    for (int q = 0; q < 3; ++q) {
-      edge = std::max(edge, std::hypot(patch.x[t[(q + 1) % 3]] - patch.x[t[q]], patch.y[t[(q + 1) % 3]] - patch.y[t[q]]));
-    }
-    min_altitude_sub = std::min(min_altitude_sub, 2.0 * area / edge);
+    const double area = triangle_area(patch.x, patch.y, t);
+    min_altitude_sub = std::min(min_altitude_sub, smallest_altitude(patch.x, patch.y, t));
     for (std::uint32_t v : t) patch.m[v] += block.spec.material.density * params.thickness * area / 3.0;
   }
   const double substeps = std::ceil(params.dt / (0.9 * min_altitude_sub / c));
@@ -1180,8 +1179,7 @@ void Cdem::Impl::merge_patch(int index) {
   double area_sum = 0.0;
   for (std::size_t t = 0; t < patch.triangles.size(); ++t) {
     const auto& tri = patch.triangles[t];
-    const double area = 0.5 * ((patch.x[tri[1]] - patch.x[tri[0]]) * (patch.y[tri[2]] - patch.y[tri[0]]) -
-                               (patch.y[tri[1]] - patch.y[tri[0]]) * (patch.x[tri[2]] - patch.x[tri[0]]));
+    const double area = triangle_area(patch.x, patch.y, tri);
     before += d.energy_density(patch.stress[t]) * area * params.thickness;
     for (int q = 0; q < 3; ++q) mean[q] += area * patch.stress[t][q];
     area_sum += area;
@@ -1434,14 +1432,23 @@ void Cdem::Impl::apply_node_edge_force(std::uint32_t node, std::uint32_t a, std:
 void Cdem::Impl::solve_ties(double h, double t) {
   if (ties.empty()) return;
   follow_sliding_ties(t);
-  const std::vector<double> free_ax = ax, free_ay = ay;
+  // The accelerations without the ties, of the nodes the ties touch (each round starts again
+  // from them).
+  std::vector<std::uint32_t> tied;
+  for (const Tie& tie : ties) tied.insert(tied.end(), {tie.node, tie.a, tie.b});
+  std::sort(tied.begin(), tied.end());
+  tied.erase(std::unique(tied.begin(), tied.end()), tied.end());
+  std::vector<Vec2> free_acceleration(tied.size());
+  for (std::size_t k = 0; k < tied.size(); ++k) free_acceleration[k] = {ax[tied[k]], ay[tied[k]]};
   const double tan_phi = std::tan(params.contact.friction_angle_deg * std::numbers::pi / 180.0);
   for (Tie& tie : ties) {
     if (!tie.applied) tie.sliding = false;
   }
   for (int round = 0; round < tie_rounds; ++round) {
-    ax = free_ax;
-    ay = free_ay;
+    for (std::size_t k = 0; k < tied.size(); ++k) {
+      ax[tied[k]] = free_acceleration[k][0];
+      ay[tied[k]] = free_acceleration[k][1];
+    }
     for (Tie& tie : ties) {
       if (tie.applied) continue;
       tie.force = {0.0, 0.0};
@@ -1543,8 +1550,7 @@ CdemEnergies Cdem::Impl::energies() const {
   }
   for (std::size_t k = 0; k < elements.size(); ++k) {
     if (patched[k]) continue;
-    const auto& g = elements[k];
-    const double area = 0.5 * ((x[g[1]] - x[g[0]]) * (y[g[2]] - y[g[0]]) - (y[g[1]] - y[g[0]]) * (x[g[2]] - x[g[0]]));
+    const double area = triangle_area(x, y, elements[k]);
     e.strain += blocks[element_block[k]].elasticity.energy_density(stress[k]) * area * params.thickness;
   }
   for (const Patch& patch : patches) {
@@ -1556,9 +1562,7 @@ CdemEnergies Cdem::Impl::energies() const {
                                        params.gravity[1] * (patch.y[v] - patch.y0[v]));
     }
     for (std::size_t t = 0; t < patch.triangles.size(); ++t) {
-      const auto& tri = patch.triangles[t];
-      const double area = 0.5 * ((patch.x[tri[1]] - patch.x[tri[0]]) * (patch.y[tri[2]] - patch.y[tri[0]]) -
-                                 (patch.y[tri[1]] - patch.y[tri[0]]) * (patch.x[tri[2]] - patch.x[tri[0]]));
+      const double area = triangle_area(patch.x, patch.y, patch.triangles[t]);
       e.strain += d.energy_density(patch.stress[t]) * area * params.thickness;
     }
   }
@@ -1596,7 +1600,7 @@ void Cdem::Impl::update_rotations() {
   }
 }
 
-void Cdem::Impl::monitor() const {
+void Cdem::Impl::monitor() {
   for (std::size_t i = 0; i < node_total(); ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(vx[i]) || !std::isfinite(vy[i])) {
       throw CdemStabilityError("a non-finite position or velocity at a node of " +
@@ -1607,6 +1611,8 @@ void Cdem::Impl::monitor() const {
   // geometrically, so a few steps' delay changes nothing).
   if (steps % energy_check_every != 0) return;
   const CdemEnergies e = energies();
+  // The largest gravitational energy released, sampled with the checks.
+  max_gravitational = std::max(max_gravitational, std::abs(e.gravitational));
   const double budget = 2.0 * (start.kinetic + start.strain + max_gravitational + energy_floor);
   if (e.total() - start.total() > budget) {
     throw CdemStabilityError("the energy grew by " + number(e.total() - start.total()) +
@@ -1657,12 +1663,6 @@ void Cdem::Impl::step() {
   }
   damping_work += damped;
   update_rotations();
-  double gravitational = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (inv_mass[i] > 0.0)
-      gravitational -= mass[i] * (params.gravity[0] * (x[i] - x0[i]) + params.gravity[1] * (y[i] - y0[i]));
-  }
-  max_gravitational = std::max(max_gravitational, std::abs(gravitational));
   monitor();
 }
 
