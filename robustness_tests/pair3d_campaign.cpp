@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "pair3d_queries.hpp"
+#include "rockcontact/kernel/3d/tolerances.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/core/policy_disagreement.hpp"
 
@@ -35,6 +36,30 @@ std::optional<std::pair<Pair3dResult, Pair3dResult>> run_checked(const Polyhedro
     ++stats.checked_disagreements;
     keep(stats, pair, std::string("Checked: ") + e.what());
     return std::nullopt;
+  }
+}
+
+// The constraints of an overlapping pair against its exact penetration depth (the kernel's
+// under Exact, rounded once): at least one closed, none deeper than the depth plus the kernel's
+// penetration_slack of the pair's size (the slack its own comparison uses) and 64 ulps of it
+// (the rounding of a gap in a frame at cp's first vertex, measured within 4 ulps).
+void check_constraints(const PolyhedronPair& pair, const Pair3dResult& result, const std::string& policy,
+                       Family3dStats& stats) {
+  if (result.verdict != Overlap::overlap || !result.queries.penetration) return;
+  const double depth = result.queries.penetration->depth;
+  const double slack = (rk::penetration_slack + 64 * 0x1p-52) * 2.0 * result.size;
+  const auto& cs = result.queries.constraints;
+  if (std::none_of(cs.begin(), cs.end(), [](const rk::ContactConstraint& c) { return c.gap <= 0.0; })) {
+    violation(stats, Property3d::held, pair, policy + ": overlapping by " + std::to_string(depth) +
+                                                 " m with no closed constraint");
+  }
+  for (const rk::ContactConstraint& c : cs) {
+    if (c.gap < -(depth + slack)) {
+      violation(stats, Property3d::within_depth, pair,
+                policy + ": a " + std::string(contact::to_string(c.type)) + " constraint's gap " +
+                    std::to_string(c.gap) + " m is deeper than the penetration depth " + std::to_string(depth) + " m");
+      break;
+    }
   }
 }
 
@@ -66,6 +91,9 @@ void check_case(const PolyhedronPair& pair, Family3dStats& stats) {
                     std::string(rk::to_string(*pair.expected)));
     }
   }
+
+  check_constraints(pair, exact, "Exact", stats);
+  check_constraints(pair, filtered, "Filtered", stats);
 
   try {
     if (evaluate_pair3d<rk::Float>(pair.a, pair.b).verdict != exact.verdict) ++stats.float_verdict;
@@ -121,6 +149,8 @@ std::string_view to_string(Property3d property) {
   switch (property) {
     case Property3d::expected_verdict: return "expected_verdict";
     case Property3d::swap: return "swap";
+    case Property3d::held: return "held";
+    case Property3d::within_depth: return "within_depth";
     case Property3d::count: break;
   }
   return "?";

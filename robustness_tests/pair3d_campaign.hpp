@@ -34,6 +34,8 @@ namespace rockcontact::robustness {
 enum class Property3d : std::uint8_t {
   expected_verdict,  // the construction's verdict, where it implies one
   swap,              // verdict(b, a) == verdict(a, b)
+  held,              // an overlapping pair has a closed constraint (gap <= 0)
+  within_depth,      // no constraint deeper than the pair's penetration depth (+ rounding)
   count
 };
 inline constexpr std::size_t property3d_count = static_cast<std::size_t>(Property3d::count);

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "rockcontact/kernel/3d/detail/separating_plane.hpp"
+#include "rockcontact/kernel/3d/penetration.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/kernel/3d/tolerances.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
@@ -281,6 +283,10 @@ struct Decision {
   Plane plane;           // the contact plane's normal, X -> Y
   bool line_normal;      // no candidate passed: the normal is the unit of point_y - point_x
   bool touching;         // the two contact points coincide (exactly)
+  // A touching vertex with no plane that separates the two blocks' tangent cones there: the
+  // blocks overlap around it. It takes the pair's penetration plane (step 4 of the header), or
+  // gives no constraint when the pair only touches.
+  bool unseparated;
   Sign gap_sign;         // exact sign of the gap, when known (zero forces gap = 0)
   std::vector<Plane> candidates;
 };
@@ -529,6 +535,9 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
       d.plane = face_plane(y, at->index, Plane::Source::y_face);
       d.y0 = d.y1 = y.p(y.face(at->index)[0]);
       d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
+      // A vertex on a face, with an edge of X leaving it into Y: the face's plane does not
+      // separate the blocks there.
+      d.unseparated = at->touching && !separates<Policy>(d.plane, vertex_cone(x, v), Cone{});
       return d;
     case Feature::Kind::edge:
       d.type = ConstraintType::vertex_edge;
@@ -543,8 +552,8 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
   choose_plane<Policy>(d, x, v, y, *at);
   // A touch with no separating candidate: the blocks overlap around the touching point (a
   // corner of one on a coincident corner or edge of the other, as with identical blocks), or
-  // the only separating plane is an internal face. No plane to push along: no constraint.
-  if (d.line_normal && d.touching) return std::nullopt;
+  // the only separating plane is an internal face.
+  d.unseparated = d.line_normal && d.touching;
   return d;
 }
 
@@ -796,6 +805,9 @@ ContactConstraint construct(const Decision& d, const Frame<FT>& frame) {
     const FT along = d.line_normal ? detail::NumberOps<FT>::sqrt(dot(gap, gap))
                                    : FT(dot(gap, n) / detail::NumberOps<FT>::sqrt(dot(n, n)));
     c.gap = detail::NumberOps<FT>::to_double(along);
+    // A penetrating contact whose rounded gap came out positive (its exact gap a few ulps below
+    // zero) is reported touching, as its decision says it holds.
+    if (d.gap_sign == Sign::negative) c.gap = std::min(c.gap, 0.0);
   }
   c.entering = d.x_is_cp ? BlockRole::cp : BlockRole::tp;
   c.cp_feature = d.x_is_cp ? d.x_feature : d.y_feature;
@@ -810,6 +822,227 @@ ContactConstraint construct(const Decision& d, const Frame<FT>& frame) {
   }
   set_tangents(c);
   return c;
+}
+
+// ---- step 4: the penetration plane of an overlapping part pair ----------------------------------
+
+// The decisions of one convex part of cp against one of tp.
+struct PartPair {
+  const ConvexPolyhedron* cp;
+  const ConvexPolyhedron* tp;
+  std::uint32_t cp_part, tp_part;  // their positions in the blocks' lists of parts
+  std::vector<Decision> decisions;
+};
+
+double dot3(const Point3& a, const Point3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Point3 along3(const Point3& p, double k, const Point3& n) { return {p.x + k * n.x, p.y + k * n.y, p.z + k * n.z}; }
+
+// The support heights of an overlapping part pair along its penetration normal n, in a frame at
+// cp's first vertex: cp reaches up to high (max over its vertices of (v - o) . n), tp down to
+// low; high - low is the penetration depth (penetration.hpp), and every point of the overlap
+// lies between the two planes.
+struct Slab {
+  Point3 origin, normal;
+  double high = 0.0, low = 0.0, slack = 0.0;
+
+  Slab(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp, const Penetration& p)
+      : origin(cp[0]), normal(p.normal) {
+    high = -HUGE_VAL, low = HUGE_VAL;
+    double extent = 0.0;
+    for (const Point3& v : cp.vertices()) high = std::max(high, height(v)), extent = std::max(extent, distance(v));
+    for (const Point3& w : tp.vertices()) low = std::min(low, height(w)), extent = std::max(extent, distance(w));
+    slack = penetration_slack * extent;
+  }
+  Point3 local(const Point3& v) const { return {v.x - origin.x, v.y - origin.y, v.z - origin.z}; }
+  double height(const Point3& v) const { return dot3(local(v), normal); }
+  double distance(const Point3& v) const { return std::sqrt(dot3(local(v), local(v))); }
+  // Where a point of the overlap projects onto the plane of height h.
+  Point3 onto(const Point3& v, double h) const { return along3(v, h - height(v), normal); }
+};
+
+// The constraint of an unseparated vertex on the penetration plane: a vertex v of cp is pushed
+// by the plane of tp's lowest points, gap = low - h(v); a vertex w of tp by the plane of cp's
+// highest, gap = h(w) - high. Both lie in [-(high - low), 0]: v in tp is above tp's lowest
+// point, w in cp below cp's highest.
+ContactConstraint on_penetration_plane(const Decision& d, const Slab& slab) {
+  ContactConstraint c;
+  c.type = d.type;
+  c.entering = d.x_is_cp ? BlockRole::cp : BlockRole::tp;
+  c.cp_feature = d.x_is_cp ? d.x_feature : d.y_feature;
+  c.tp_feature = d.x_is_cp ? d.y_feature : d.x_feature;
+  c.point_cp = d.x_is_cp ? d.x0 : slab.onto(d.x0, slab.high);
+  c.point_tp = d.x_is_cp ? slab.onto(d.x0, slab.low) : d.x0;
+  c.normal = slab.normal;
+  c.plane = {PlaneSource::Kind::penetration, 0, 0};
+  c.gap = d.x_is_cp ? std::min(0.0, slab.low - slab.height(d.x0)) : std::min(0.0, slab.height(d.x0) - slab.high);
+  set_tangents(c);
+  return c;
+}
+
+// The position of a constraint on the penetration plane: its midpoint with the height removed.
+Point3 in_plane(const ContactConstraint& c, const Slab& slab) {
+  const Point3 mid{0.5 * (c.point_cp.x + c.point_tp.x), 0.5 * (c.point_cp.y + c.point_tp.y),
+                   0.5 * (c.point_cp.z + c.point_tp.z)};
+  return slab.onto(mid, 0.0);
+}
+
+// The convex hull, counter-clockwise, of 2D points (Andrew's monotone chain); collinear points
+// and duplicates within `slack` (metres) dropped.
+std::vector<std::array<double, 2>> hull2(std::vector<std::array<double, 2>> p, double slack) {
+  std::sort(p.begin(), p.end());
+  const auto turn = [](const auto& o, const auto& a, const auto& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  const auto scale = [&](const auto& o, const auto& b) { return std::hypot(b[0] - o[0], b[1] - o[1]); };
+  std::vector<std::array<double, 2>> h(2 * p.size() + 1);
+  std::size_t k = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = k;
+    for (const auto& q : p) {
+      while (k >= base + 2 && turn(h[k - 2], h[k - 1], q) <= slack * scale(h[k - 2], q)) --k;
+      if (k == base || scale(h[k - 1], q) > slack) h[k++] = q;
+    }
+    if (k > base) --k;
+    std::reverse(p.begin(), p.end());
+  }
+  h.resize(k);
+  return h;
+}
+
+// The convex polygon `subject` clipped by the half-planes left of every edge of the convex,
+// counter-clockwise `clip` (Sutherland-Hodgman). A `clip` of one or two points (a vertex or an
+// edge as support feature) keeps the part of `subject` it covers: its points inside `subject`,
+// or its segment's part inside.
+std::vector<std::array<double, 2>> clip2(std::vector<std::array<double, 2>> subject,
+                                         const std::vector<std::array<double, 2>>& clip) {
+  const std::size_t m = clip.size();
+  for (std::size_t e = 0; e < m && m >= 3 && !subject.empty(); ++e) {
+    const auto &a = clip[e], &b = clip[(e + 1) % m];
+    const auto side = [&](const auto& q) { return (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]); };
+    std::vector<std::array<double, 2>> kept;
+    for (std::size_t i = 0; i < subject.size(); ++i) {
+      const auto &p = subject[i], &q = subject[(i + 1) % subject.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0.0) kept.push_back(p);
+      if ((sp >= 0.0) != (sq >= 0.0)) {
+        const double t = sp / (sp - sq);
+        kept.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
+      }
+    }
+    subject = std::move(kept);
+  }
+  return subject;
+}
+
+// Where two segments of the plane meet: the crossing of their lines, or for (nearly) parallel
+// ones the middle of the four endpoints.
+std::array<double, 2> crossing2(const std::vector<std::array<double, 2>>& a, const std::vector<std::array<double, 2>>& b) {
+  const double ux = a[1][0] - a[0][0], uy = a[1][1] - a[0][1], vx = b[1][0] - b[0][0], vy = b[1][1] - b[0][1];
+  const double det = ux * vy - uy * vx;
+  if (std::fabs(det) <= 1e-12 * std::hypot(ux, uy) * std::hypot(vx, vy)) {
+    return {0.25 * (a[0][0] + a[1][0] + b[0][0] + b[1][0]), 0.25 * (a[0][1] + a[1][1] + b[0][1] + b[1][1])};
+  }
+  const double t = ((b[0][0] - a[0][0]) * vy - (b[0][1] - a[0][1]) * vx) / det;
+  return {a[0][0] + t * ux, a[0][1] + t * uy};
+}
+
+// The fallback of step 4 when no penetrating or touching contact holds an overlapping pair: the
+// corners of the region where cp's support feature along n (its vertices within the slack of
+// `high`) and tp's (within the slack of `low`) overlap in projection on the plane, each a
+// constraint with the depth as its gap, between the two support planes.
+void add_support_corners(const PartPair& pair, const Slab& slab, std::vector<ContactConstraint>& out) {
+  const Point3 n = slab.normal;
+  const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  const Point3 axis = ax <= ay && ax <= az ? Point3{1, 0, 0} : ay <= az ? Point3{0, 1, 0} : Point3{0, 0, 1};
+  Point3 u = along3(axis, -dot3(axis, n), n);
+  const double length = std::sqrt(dot3(u, u));
+  u = {u.x / length, u.y / length, u.z / length};
+  const Point3 w{n.y * u.z - n.z * u.y, n.z * u.x - n.x * u.z, n.x * u.y - n.y * u.x};
+  const auto support = [&](const ConvexPolyhedron& poly, double level, std::vector<std::uint32_t>& ids) {
+    std::vector<std::array<double, 2>> points;
+    for (std::uint32_t i = 0; i < poly.size(); ++i) {
+      if (std::fabs(slab.height(poly[i]) - level) > slab.slack) continue;
+      ids.push_back(i);
+      points.push_back({dot3(slab.local(poly[i]), u), dot3(slab.local(poly[i]), w)});
+    }
+    return points;
+  };
+  std::vector<std::uint32_t> cp_ids, tp_ids;
+  const std::vector<std::array<double, 2>> top = support(*pair.cp, slab.high, cp_ids);
+  const std::vector<std::array<double, 2>> bottom = support(*pair.tp, slab.low, tp_ids);
+  std::vector<std::array<double, 2>> a = hull2(top, slab.slack), b = hull2(bottom, slab.slack);
+  if (a.size() < b.size()) std::swap(a, b);
+  std::vector<std::array<double, 2>> corners;
+  if (b.size() == 1) {
+    corners = b;  // a vertex against a vertex, an edge or a face: the vertex
+  } else if (a.size() == 2) {
+    corners = {crossing2(a, b)};  // two edges
+  } else {
+    corners = hull2(b.size() >= 3 ? clip2(a, b) : clip2(b, a), slab.slack);
+    if (corners.empty()) corners = {b.front()};  // rounding lost a touch along an edge
+  }
+  const auto nearest = [&](const std::vector<std::array<double, 2>>& points, const std::vector<std::uint32_t>& ids,
+                           const std::array<double, 2>& q) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      if (std::hypot(points[i][0] - q[0], points[i][1] - q[1]) <
+          std::hypot(points[best][0] - q[0], points[best][1] - q[1])) {
+        best = i;
+      }
+    }
+    return ids[best];
+  };
+  for (const auto& q : corners) {
+    const Point3 at = along3(along3(slab.origin, q[0], u), q[1], w);
+    ContactConstraint c;
+    c.type = ConstraintType::vertex_face;
+    c.cp_feature = {Feature::Kind::vertex, nearest(top, cp_ids, q), pair.cp_part};
+    c.tp_feature = {Feature::Kind::vertex, nearest(bottom, tp_ids, q), pair.tp_part};
+    c.point_cp = along3(at, slab.high, n);
+    c.point_tp = along3(at, slab.low, n);
+    c.normal = n;
+    c.plane = {PlaneSource::Kind::penetration, 0, 0};
+    c.gap = std::min(0.0, slab.low - slab.high);
+    set_tangents(c);
+    out.push_back(c);
+  }
+}
+
+// Step 4 of the header, for an overlapping part pair (its penetration given): drop constraints
+// deeper than the pair, give the unseparated vertices the penetration plane, one constraint per
+// position on that plane, and the support corners when nothing else holds the pair.
+// `closed[i]` is the exact verdict that found[i] touches or penetrates (its decision's gap sign),
+// which decides whether anything holds the pair: a gap rounded to +1e-18 still holds it.
+void fit_to_penetration(const PartPair& pair, const Penetration& depth, std::vector<ContactConstraint>& found,
+                        std::vector<char>& closed) {
+  const Slab slab(*pair.cp, *pair.tp, depth);
+  const double deepest = slab.high - slab.low + slab.slack;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (found[i].gap < -deepest) continue;
+    found[kept] = std::move(found[i]);
+    closed[kept++] = closed[i];
+  }
+  found.resize(kept);
+  closed.resize(kept);
+  std::vector<Point3> taken;
+  for (const ContactConstraint& c : found) {
+    if (dot3(c.normal, slab.normal) >= 1.0 - penetration_slack) taken.push_back(in_plane(c, slab));
+  }
+  for (const Decision& d : pair.decisions) {
+    if (!d.unseparated) continue;
+    ContactConstraint c = on_penetration_plane(d, slab);
+    const Point3 at = in_plane(c, slab);
+    const bool seen = std::any_of(taken.begin(), taken.end(), [&](const Point3& p) {
+      const Point3 apart{p.x - at.x, p.y - at.y, p.z - at.z};
+      return std::sqrt(dot3(apart, apart)) <= slab.slack;
+    });
+    if (seen) continue;
+    taken.push_back(at);
+    found.push_back(std::move(c));
+    closed.push_back(1);
+  }
+  if (std::none_of(closed.begin(), closed.end(), [](char k) { return k != 0; })) add_support_corners(pair, slab, found);
 }
 
 template <NumberPolicy Policy>
@@ -840,19 +1073,42 @@ std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhed
     throw std::invalid_argument("contact_constraints: the tolerance must be finite and >= 0 (metres), got " +
                                 std::to_string(tolerance));
   }
-  std::vector<Decision> decisions;
+  std::vector<PartPair> pairs;
   {
     const PredicateScope scope;
     const std::vector<Topology> cp = topologies<Policy>(cp_parts), tp = topologies<Policy>(tp_parts);
     for (const Topology& a : cp) {
-      for (const Topology& b : tp) decide_pair<Policy>(a, b, tolerance, decisions);
+      for (const Topology& b : tp) {
+        PartPair pair{a.poly, b.poly, a.part, b.part, {}};
+        decide_pair<Policy>(a, b, tolerance, pair.decisions);
+        pairs.push_back(std::move(pair));
+      }
     }
   }
   std::vector<ContactConstraint> out;
-  if (decisions.empty()) return out;
   using FT = detail::ConstructionType<Policy>;
   const Frame<FT> frame{cp_parts.front().vertices().front()};
-  for (const Decision& d : decisions) out.push_back(construct(d, frame));
+  for (const PartPair& pair : pairs) {
+    // Step 4 of the header, for a pair with a penetrating or an unseparated contact, or with no
+    // closed one: a needle through a block overlaps it with no vertex inside and no edge pair
+    // crossing. A pair that touches at every contact it has does not overlap.
+    const bool may_overlap = std::any_of(pair.decisions.begin(), pair.decisions.end(), [](const Decision& d) {
+      return d.gap_sign == Sign::negative || d.unseparated;
+    }) || std::none_of(pair.decisions.begin(), pair.decisions.end(), [](const Decision& d) {
+      return d.gap_sign != Sign::positive;
+    });
+    const std::optional<Penetration> depth =
+        may_overlap ? penetration<Policy>(*pair.cp, *pair.tp) : std::optional<Penetration>();
+    std::vector<ContactConstraint> found;
+    std::vector<char> closed;
+    for (const Decision& d : pair.decisions) {
+      if (d.unseparated) continue;
+      found.push_back(construct(d, frame));
+      closed.push_back(d.gap_sign != Sign::positive);
+    }
+    if (depth) fit_to_penetration(pair, *depth, found, closed);
+    for (ContactConstraint& c : found) out.push_back(std::move(c));
+  }
   return out;
 }
 

@@ -52,6 +52,25 @@
 //      p - v, the line of the two contact points. Every passing candidate is kept in
 //      candidates, the "vector list for potential contact normal directions" of §4.2,
 //      for the open-close iteration to re-run the rule with updated points (§4.3).
+//   4. Overlapping parts: the minimum translation. When two convex parts overlap (exact verdict,
+//      asked only when a contact above penetrates or is unseparated, below), their penetration
+//      (penetration.hpp: depth delta, normal n from cp towards tp) bounds every contact: no
+//      point of the overlap is deeper along n than delta, and the pair comes apart by delta n.
+//      So (a) a constraint deeper than delta (+ penetration_slack of the pair's size,
+//      tolerances.hpp) is dropped: an edge-edge crossing whose plane the blocks cannot come
+//      apart along at that depth (two cubes overlapping 1 mm face-on with an offset cross edges
+//      0.5 m and 0.7 m "deep" across the overlap's other sides); (b) a touching vertex with no
+//      plane separating the two blocks' tangent cones (an edge of its block leaving it into the
+//      other: the blocks overlap around it, as every corner of two equal cubes overlapping
+//      face-on does) takes the plane of the minimum translation: a vertex v of cp the plane of
+//      tp's lowest points along n, gap = min over tp of w.n - v.n; a vertex w of tp the plane
+//      of cp's highest, gap = w.n - max over cp of v.n; both in [-delta, 0]; one constraint per
+//      position on that plane (a corner of cp on a corner of tp is one contact, not two);
+//      (c) when nothing holds the pair then (every contact dropped or none found), the corners
+//      of the overlap of cp's and tp's support features along n, projected on the plane, each
+//      with gap -delta. An unseparated vertex of a pair that only touches (its separating plane
+//      is an internal face) gives no constraint. The depth and these constructions are in
+//      double in a frame at cp's first vertex under every policy (the verdicts stay exact).
 //   Duplicates: each type has its own feature pair, and no contact is found twice: edge-edge
 //   needs interior points of both edges (a crossing at a vertex is that vertex's contact), a
 //   vertex-vertex contact found from both blocks is kept once (from cp's vertex), and an
@@ -77,10 +96,9 @@
 // edge or corner of a block touches each convex part meeting there, and each part pair gives one
 // constraint with that part's plane (chosen by shortest exit among the part's candidates), so a
 // concave angle is split into its convex sub-angles, one plane each, as in Figures 4 and 5.
-// Known limits: a vertex touching the other block (on its boundary) where the two blocks
-// overlap around it, so that no candidate plane passes the no-overlap check (a corner on a
-// coincident corner of an overlapping block; identical blocks), gives no constraint, as there is
-// no plane to push along: two identical blocks yield none at all. An edge where two parts meet
+// Known limits: two identical blocks overlap with no minimum translation that is unique: they
+// get the penetration plane of one of the tied directions (penetration.hpp's tie rule). An
+// edge where two parts meet
 // flush (inside a flat face of the union) still counts as an edge of each part, so a face
 // resting across it gets extra corner constraints there, and a vertex resting on it one
 // constraint per part (each with the right normal and gap: more stiffness, not a wrong force).
@@ -131,11 +149,13 @@ struct Feature {
 enum class BlockRole : std::uint8_t { cp, tp };
 
 // Where a contact plane comes from: the plane of a face of cp or of tp, the plane through an
-// edge of each block parallel to the other (edge_pair), or, for a vertex-edge or vertex-vertex
-// contact without a passing candidate, the line of the two contact points (contact_line).
+// edge of each block parallel to the other (edge_pair), for a vertex-edge or vertex-vertex
+// contact without a passing candidate the line of the two contact points (contact_line), or,
+// in a pair of parts that overlap, the plane of their minimum translation (penetration,
+// step 4 of the header).
 // Indices are into faces() or edges() of the parts named by cp_feature.part and tp_feature.part.
 struct PlaneSource {
-  enum class Kind : std::uint8_t { cp_face, tp_face, edge_pair, contact_line };
+  enum class Kind : std::uint8_t { cp_face, tp_face, edge_pair, contact_line, penetration };
   Kind kind = Kind::cp_face;
   std::uint32_t cp_index = 0;  // cp's face (cp_face) or edge (edge_pair); 0 otherwise
   std::uint32_t tp_index = 0;  // tp's face (tp_face) or edge (edge_pair); 0 otherwise

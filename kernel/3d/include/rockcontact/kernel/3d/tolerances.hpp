@@ -16,4 +16,15 @@ namespace rockcontact::kernel {
 // split the user may not expect; a smaller one refuses far-from-origin rotated blocks.
 inline constexpr double face_planarity_tolerance = 1e-9;
 
+// The penetration plane of two overlapping parts (contact_constraints.hpp, step 4) is built in
+// double: its normal (penetration.hpp) is within a few units of 2^-53 / sin a of the exact one
+// (a the angle of an edge pair), and the heights and gaps measured along it within a few ulps
+// of the pair's size S. This fraction of S (the largest distance of a vertex of the pair from
+// cp's first vertex) absorbs that when a constraint is compared with the depth, two constraints
+// are taken for one position on the plane, or a vertex is taken for a support vertex: 1e-10 S
+// is 1e-10 m on a 1 m pair, far above the rounding (1e-13 S for edges 1e-3 rad from parallel)
+// and far below any physical penetration. Dimensionless. Larger merges distinct contact
+// positions; smaller lets rounding drop a crossing exactly as deep as the pair.
+inline constexpr double penetration_slack = 1e-10;
+
 }  // namespace rockcontact::kernel
