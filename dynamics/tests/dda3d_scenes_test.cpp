@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "rockcontact/dynamics/dda3d.hpp"
 #include "rockcontact/dynamics/io/scene3d.hpp"
@@ -71,4 +72,34 @@ BOOST_AUTO_TEST_CASE(slender_blocks_topple_squat_block_stands) {
   BOOST_TEST_MESSAGE("squat: turned " << squat_turn << "°, moved " << distance(squat.centroid, squat0) << " m");
   BOOST_TEST(squat_turn < 0.5);
   BOOST_TEST(distance(squat.centroid, squat0) < 1e-3);
+}
+
+// Seed 001 §6.1, Table 4: the wedge rests on its base with six contact constraints at four
+// positions: one at each of its two front top corners, on the joint that corner lies on, and
+// two at the crest and at the daylight point, which lie on the line of intersection, one per
+// joint. The base is three convex parts and the wedge's corners are corners of the base too, so
+// each position is found from several part pairs and from both blocks' vertices; it is one
+// constraint all the same (contact_constraints.hpp, step 5), after the initial equilibrium and
+// after the wedge has started to move (the corners drift apart by the settling). Counted on the
+// closed constraints, by position (1 cm apart at least) and joint (the two normals 61° apart).
+BOOST_AUTO_TEST_CASE(wedge_has_table_4s_six_constraints) {
+  const dyn::Scene3d scene = dyn::read_scene3d_file(scenes3d + "wedge.json");
+  dyn::Dda3d sim(scene.blocks, scene.law, scene.params);
+  for (int step = 0; step <= 20; step += 20) {
+    while (static_cast<int>(sim.steps()) < step) sim.step();
+    std::vector<dyn::Contact3dState> closed;
+    for (const dyn::Contact3dState& c : sim.contacts()) {
+      if (c.mode != dyn::ContactMode3d::open) closed.push_back(c);
+    }
+    BOOST_TEST_CONTEXT("after " << step << " steps") {
+      BOOST_TEST(closed.size() == 6u);
+      std::vector<Point3> positions;
+      for (const dyn::Contact3dState& c : closed) {
+        if (std::none_of(positions.begin(), positions.end(), [&](const Point3& p) { return distance(p, c.point) < 0.01; })) {
+          positions.push_back(c.point);
+        }
+      }
+      BOOST_TEST(positions.size() == 4u);
+    }
+  }
 }

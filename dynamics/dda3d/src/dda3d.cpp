@@ -47,6 +47,14 @@ constexpr double energy_floor_speed = 1.0e-3;
 // close by 1e-8 m from one iteration of the static solve to the next. (Not in the dynamic steps:
 // there it changed the toppling scene's course, a motion that hinges on such contacts.)
 constexpr double open_close_tolerance = 1.0e-9;
+// One contact per position (hold_contacts): constraints of a pair with one normal closer than
+// this fraction of the smaller block's size (and than the detection range) are one contact. A
+// vertex held on a face and the face's own corner found on the vertex's block start as one
+// point and drift apart by the contact's settling and slip; counted twice, that corner takes
+// twice its share of the load. 1e-3 covers the settling and a slip up to the safety factor's
+// threshold; 0.05 merged a real corner into a held one that had slid off its face, and the
+// generated wedges' slides came out 30-60 % long.
+constexpr double merge_ratio = 1.0e-3;
 // Contact transfer (detect): the largest angle between the normals of a vanished constraint and
 // the new one that continues it, radians (15 degrees).
 constexpr double transfer_angle = std::numbers::pi / 12.0;
@@ -751,8 +759,15 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
     }
     return false;
   });
-  for (auto& entry : held) found.push_back(std::move(entry.second));
-  for (kernel::ContactConstraint& c : crossings) found.push_back(std::move(c));
+  // The held constraints first: where one and a kernel constraint are the same contact (a vertex
+  // held on a face while the kernel finds the face's corner on the vertex's block), the merge
+  // keeps the held one and its record.
+  std::vector<kernel::ContactConstraint> ordered;
+  for (auto& entry : held) ordered.push_back(std::move(entry.second));
+  for (kernel::ContactConstraint& c : crossings) ordered.push_back(std::move(c));
+  for (kernel::ContactConstraint& c : found) ordered.push_back(std::move(c));
+  found = std::move(ordered);
+  kernel::merge_coincident(found, std::min(range, merge_ratio * std::min(blocks[a].size, blocks[b].size)));
 }
 
 // Contact transfer: the closed constraints of the pair in the last list whose key is no longer

@@ -1109,6 +1109,16 @@ std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhed
     if (depth) fit_to_penetration(pair, *depth, found, closed);
     for (ContactConstraint& c : found) out.push_back(std::move(c));
   }
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const auto parts : {cp_parts, tp_parts}) {
+    for (const ConvexPolyhedron& part : parts) {
+      for (const Point3& p : part.vertices()) {
+        const double c[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+      }
+    }
+  }
+  merge_coincident(out, same_contact_tolerance * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
   return out;
 }
 
@@ -1117,6 +1127,31 @@ std::vector<ContactConstraint> contact_constraints(const ConvexPolyhedron& cp, c
                                                    double tolerance) {
   return contact_constraints<Policy>(std::span<const ConvexPolyhedron>(&cp, 1),
                                      std::span<const ConvexPolyhedron>(&tp, 1), tolerance);
+}
+
+void merge_coincident(std::vector<ContactConstraint>& constraints, double near) {
+  // The midpoints of the two constraints' points: the same position when they agree across the
+  // plane, and along it within the deeper gap (a vertex of cp on tp's face and tp's vertex at
+  // the same place on cp's face, as where two cut blocks share a corner).
+  const auto same = [&](const ContactConstraint& a, const ContactConstraint& b) {
+    if (dot3(a.normal, b.normal) < 1.0 - same_contact_tolerance) return false;
+    const Point3 d{0.5 * (a.point_cp.x + a.point_tp.x - b.point_cp.x - b.point_tp.x),
+                   0.5 * (a.point_cp.y + a.point_tp.y - b.point_cp.y - b.point_tp.y),
+                   0.5 * (a.point_cp.z + a.point_tp.z - b.point_cp.z - b.point_tp.z)};
+    const double along = dot3(d, a.normal);
+    const double across = std::sqrt(std::max(0.0, dot3(d, d) - along * along));
+    return across <= near && std::fabs(along) <= std::max(std::fabs(a.gap), std::fabs(b.gap)) + near;
+  };
+  std::vector<ContactConstraint> kept;
+  for (ContactConstraint& c : constraints) {
+    const auto twin = std::find_if(kept.begin(), kept.end(), [&](const ContactConstraint& k) { return same(k, c); });
+    if (twin == kept.end()) {
+      kept.push_back(std::move(c));
+    } else if (c.gap < twin->gap - near) {
+      *twin = std::move(c);
+    }
+  }
+  constraints = std::move(kept);
 }
 
 std::optional<Point3> sliding_direction(const Point3& normal, const Point3& relative, double tolerance) {

@@ -16,7 +16,12 @@
 //      its plane while its features stay in contact (a vertex over its face, two vertices
 //      within the range, a crossing on both edges), replacing the kernel's shortest exit, which
 //      next to a concave edge of a non-convex block can name a face the vertex never came
-//      through (dda3d.cpp, hold_contacts). A constraint identified by its pair and its two
+//      through (dda3d.cpp, hold_contacts). The held and the found constraints of a pair are
+//      one per contact position (kernel::merge_coincident, the held first): constraints with
+//      one normal closer than 10⁻³ of the smaller block's size are one contact, as a vertex held
+//      on a face and the face's corner found on the vertex's block are where two cut blocks
+//      share a corner (seed 001 Table 4's six constraints on the §6.1 wedge, not 24 counting
+//      each part and each block's vertex). A constraint identified by its pair and its two
 //      features keeps its mode and tangential spring; one whose features changed (a crossing
 //      past an edge's end) takes them over from the vanished constraint of the pair within a
 //      step's largest motion and 15° of its normal (contact transfer); any other starts open

@@ -71,6 +71,12 @@
 //      with gap -delta. An unseparated vertex of a pair that only touches (its separating plane
 //      is an internal face) gives no constraint. The depth and these constructions are in
 //      double in a frame at cp's first vertex under every policy (the verdicts stay exact).
+//   5. One constraint per position: parts of one block that share an edge or a face plane give
+//      the same contact once per part (a vertex on the edge two parts share), and a corner both
+//      blocks have (cut from one region) gives it from each block's vertex; constraints with the
+//      same normal at the same position are one (merge_coincident, below). So the §6.1 wedge
+//      has seed 001 Table 4's six: a plane each at its two front corners, both planes at the
+//      crest and at the daylight point on the line of intersection.
 //   Duplicates: each type has its own feature pair, and no contact is found twice: edge-edge
 //   needs interior points of both edges (a crossing at a vertex is that vertex's contact), a
 //   vertex-vertex contact found from both blocks is kept once (from cp's vertex), and an
@@ -202,6 +208,15 @@ template <NumberPolicy Policy>
 std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhedron> cp_parts,
                                                    std::span<const ConvexPolyhedron> tp_parts,
                                                    double tolerance = 0.0);
+
+// One constraint per contact position and plane (step 5 of the header): of the constraints
+// whose normals agree within same_contact_tolerance (tolerances.hpp) and whose midpoints agree
+// across the plane within `near` (metres) and along it within the deeper gap plus `near`, the
+// first is kept, unless another is deeper by more than `near`. contact_constraints applies it
+// with near = same_contact_tolerance times the pair's extent; a caller that carries contacts
+// across steps (the engine's contact memory) applies it again, its own first, with the distance
+// the blocks may have slid apart since the contact formed.
+void merge_coincident(std::vector<ContactConstraint>& constraints, double near);
 
 // The unit sliding direction of tp's contact point relative to cp's on the contact plane
 // (§2.3): the tangential part of `relative` = motion of tp's point minus motion of cp's point,

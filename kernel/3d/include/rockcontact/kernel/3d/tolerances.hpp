@@ -27,4 +27,12 @@ inline constexpr double face_planarity_tolerance = 1e-9;
 // positions; smaller lets rounding drop a crossing exactly as deep as the pair.
 inline constexpr double penetration_slack = 1e-10;
 
+// Two constraints of one block pair are one contact (contact_constraints.hpp, step 5) when their
+// unit normals agree within this (1 - cos of the angle: 1e-9 is 4.5e-5 rad) and their points
+// within this fraction of the pair's size. The parts of a cut block meet only to the rounding of
+// their implicit vertices (1e-16 relative, up to 1e-10 far from the origin), so their shared
+// planes and vertices agree far inside it, while two real contacts are never that close.
+// Dimensionless. Larger merges nearby contacts; smaller counts a shared vertex twice.
+inline constexpr double same_contact_tolerance = 1e-9;
+
 }  // namespace rockcontact::kernel
