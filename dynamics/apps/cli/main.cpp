@@ -529,6 +529,23 @@ int run_safety_factor(const SafetyFactorArgs& options) {
   summary << "block " << options.block << ": factor of safety " << result.factor_of_safety << " ("
           << status_name(result.status) << ", " << result.iterations << " trials of " << options.params.time
           << " s, slip threshold " << result.slip << " m)\n";
+  // A bracket end is a bound, not a factor of safety: say so, and what to change.
+  switch (result.status) {
+    case dyn::SafetyStatus::converged: return exit_ok;
+    case dyn::SafetyStatus::slides_at_min:
+      std::cerr << "rockcontact: " << options.scene << ": block '" << options.block << "' slides even at factor "
+                << result.factor_of_safety << " (its friction and cohesion times " << 1.0 / result.factor_of_safety
+                << "): the factor of safety is below that, or the block is not held at all. Check that it rests "
+                   "on its supports in the scene, and that the contacts' settling under kn does not pass the slip "
+                   "threshold (--slip, times the block's size: "
+                << result.slip << " m here); a stiffer kn settles less\n";
+      return exit_check_failed;
+    case dyn::SafetyStatus::stable_at_max:
+      std::cerr << "rockcontact: " << options.scene << ": block '" << options.block << "' stands even at factor "
+                << result.factor_of_safety << ": the factor of safety is at least that (a block with cohesion, or "
+                   "resting on a gentle slope)\n";
+      return exit_check_failed;
+  }
   return exit_ok;
 }
 
@@ -545,6 +562,11 @@ void add_safety_factor(CLI::App& app, int& exit_status) {
                   "A trial slides when the block's centroid moves farther than this fraction of its "
                   "size (the cube root of its volume)")
       ->check(CLI::Range(0.0, 1.0).description("in (0, 1)"))
+      ->capture_default_str();
+  sub->add_option("--damping", options->params.damping_ratio,
+                  "Damping ratio of the trials' contact dashpots (the scene's, if larger), against the "
+                  "rocking of the block on its penalty springs")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->add_option("--time", options->params.time, "Simulated seconds of each trial")
       ->check(CLI::PositiveNumber)

@@ -31,6 +31,9 @@ void check_params(const SafetyFactorParams& p) {
     refuse("max_factor", "a finite factor > min_factor", p.max_factor);
   }
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) refuse("tolerance", "a ratio in (0, 1)", p.tolerance);
+  if (!(std::isfinite(p.damping_ratio) && p.damping_ratio >= 0.0)) {
+    refuse("damping_ratio", "a finite ratio >= 0", p.damping_ratio);
+  }
 }
 
 // The strength properties of a law, as an interface carries them.
@@ -108,7 +111,9 @@ SafetyTrial run_trial(const Reduction& reduction, const Dda3dParams& params, std
   const auto start = std::chrono::steady_clock::now();
   SafetyTrial trial;
   trial.factor = factor;
-  Dda3d sim(reduction.blocks(), reduction.law(factor), params);
+  ContactLaw3d law = reduction.law(factor);
+  law.damping_ratio = std::max(law.damping_ratio, safety.damping_ratio);
+  Dda3d sim(reduction.blocks(), law, params);
   // The step's times are sums of binary fractions of dt: a relative slack keeps t = 0.05 s from
   // taking one more step for its rounding.
   const double slack = 1e-9 * safety.time;

@@ -33,6 +33,16 @@
 // step damps it within tens of steps) removes it whatever the stiffness. A block that is
 // sliding keeps accelerating after settle_time, so nothing is lost but settle_time of run.
 //
+// Contact dashpots. Each trial's contacts carry dashpots of damping ratio `damping_ratio` (or
+// the scene's, if larger; dda3d.hpp, "Contact damping"). A block released on penalty springs
+// rocks on them; at a small step the implicit integrator hardly damps that (1e-4 s on a wedge
+// whose springs ring at ~1 kHz), its contacts open and close, and each opening lets it slip: the
+// wedges of a generated family (dynamics/apps/wedge_family.hpp) ratcheted down at factors up to
+// 5 % below FS at kn = 1e10 N/m, dt = 1e-4 s, and one heavy wedge at any factor. The dashpots act
+// along the normal and, while a contact sticks, along its plane: a block sliding steadily feels
+// neither, so they damp the rocking without moving the limit (the same family: within 0.1 % on
+// four of five wedges, 1 % on the heavy one, bench/README.md).
+//
 // Resolution. Just above FS the block slides with an acceleration a ≈ a_0 (1 - FS / F) (a_0 the
 // frictionless one, g sin ψ on a plane of dip ψ), so it is called sliding only once
 // ½ a (time - settle_time)² exceeds the threshold: the factor found is high by about
@@ -56,6 +66,7 @@ struct SafetyFactorParams {
   double min_factor = 0.1;    // the bracket of the bisection, 0 < min_factor < max_factor
   double max_factor = 10.0;
   double tolerance = 1.0e-3;  // relative width of the final bracket, in (0, 1)
+  double damping_ratio = 0.5; // the trials' contact dashpots (header), finite >= 0
 };
 
 inline SafetyFactorParams default_safety_factor_params() { return {}; }
