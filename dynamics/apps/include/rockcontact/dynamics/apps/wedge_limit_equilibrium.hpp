@@ -57,6 +57,7 @@ struct WedgeJoint {
   double friction_angle_deg = 0.0;  // degrees, in [0, 90)
   double cohesion_pa = 0.0;         // Pa, finite >= 0
   double area = 0.0;                // m², finite >= 0: the wedge's contact area on this plane
+  friend bool operator==(const WedgeJoint&, const WedgeJoint&) = default;
 };
 
 enum class WedgeMode {
