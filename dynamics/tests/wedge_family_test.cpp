@@ -19,10 +19,6 @@
 // by Cramer's rule, not along the generator's cone edges), resting on faces with the joints'
 // normals, and the slide reference is the net force of the wedge's equilibrium solved here.
 
-namespace rockcontact::dynamics {
-std::ostream& operator<<(std::ostream& out, WedgeMode mode) { return out << to_string(mode); }
-}  // namespace rockcontact::dynamics
-
 namespace dyn = rockcontact::dynamics;
 using rockcontact::kernel::Point3;
 

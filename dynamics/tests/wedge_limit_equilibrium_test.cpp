@@ -14,11 +14,6 @@
 
 #include "rockcontact/kernel/3d/block_cutting.hpp"
 
-namespace rockcontact::dynamics {
-// For Boost.Test's messages (found by argument-dependent lookup).
-std::ostream& operator<<(std::ostream& out, WedgeMode mode) { return out << to_string(mode); }
-}  // namespace rockcontact::dynamics
-
 namespace dyn = rockcontact::dynamics;
 using rockcontact::kernel::Point3;
 

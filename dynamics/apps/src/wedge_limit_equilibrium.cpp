@@ -133,6 +133,8 @@ std::string_view to_string(WedgeMode mode) {
   return "unknown";
 }
 
+std::ostream& operator<<(std::ostream& out, WedgeMode mode) { return out << to_string(mode); }
+
 WedgeLimitEquilibrium wedge_factor_of_safety(const WedgeJoint& a, const WedgeJoint& b, double weight_n) {
   check_joint(a, "joint_a");
   check_joint(b, "joint_b");

@@ -37,6 +37,7 @@
 // point to) and is free to slide; the contact areas S_A, S_B, which the slope geometry would
 // give, are inputs (only the cohesion terms use them).
 
+#include <ostream>
 #include <string_view>
 
 #include "rockcontact/kernel/3d/point3.hpp"
@@ -68,6 +69,7 @@ enum class WedgeMode {
 };
 
 std::string_view to_string(WedgeMode mode);
+std::ostream& operator<<(std::ostream& out, WedgeMode mode);  // to_string(mode)
 
 struct WedgeLimitEquilibrium {
   double factor_of_safety = 0.0;    // dimensionless: resisting / driving force along `sliding`
