@@ -156,12 +156,28 @@ BOOST_AUTO_TEST_CASE(cube_on_an_incline_matches_tan_phi_over_tan_theta) {
     // The reduced angle at FS is the slope's own: tan φ / FS = tan θ.
     BOOST_TEST(r.critical_friction_angle_deg == 30.0, boost::test_tools::tolerance(5e-3));
     BOOST_TEST(r.iterations == r.trials.size());
+    BOOST_TEST(r.warnings.empty());  // settling 2500 g / (4 x 1e9) = 6.1e-6 m, 0.6 % of the 1 mm threshold
     // Every trial agrees with the closed form on which side of FS it lies, except within the
     // bracket's last width.
     for (const SafetyTrial& t : r.trials) {
       if (std::fabs(t.factor / expected - 1.0) > 5e-3) BOOST_TEST(t.slid == (t.factor > expected), "F = " << t.factor);
     }
   }
+}
+
+// A soft law warns: kn = 1e8 and kt = 3e7 N/m let the cube settle m g / (4 kt) = 2500 x 9.81 /
+// 1.2e8 = 2.04e-4 m (its four bottom corners closed), 20 % of the 1 mm slip threshold, past
+// settling_warning's 10 %. (The default law's 6.1e-6 m gives none: the test above.)
+BOOST_AUTO_TEST_CASE(soft_contacts_warn_of_their_settling) {
+  Scene s = cube_on_incline(30.0, 40.0);
+  s.law.kn = 1.0e8;
+  s.law.kt = 3.0e7;
+  const SafetyFactorResult r = safety_factor(s.blocks, s.law, s.params, "cube");
+  const double expected = 2500.0 * g / (4 * 3.0e7);
+  BOOST_TEST(r.settling == expected, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST_REQUIRE(r.warnings.size() == 1u);
+  BOOST_TEST(r.warnings[0].find("settle about 0.000204") != std::string::npos, r.warnings[0]);
+  BOOST_TEST(r.warnings[0].find("raise kn and kt") != std::string::npos);
 }
 
 // A strength that holds at the largest factor, and none that holds at the smallest: the status

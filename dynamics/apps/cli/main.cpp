@@ -524,7 +524,10 @@ int run_safety_factor(const SafetyFactorArgs& options) {
                               {"trials", trials},
                               {"block", options.block},
                               {"slip", result.slip},
-                              {"time", options.params.time}});
+                              {"time", options.params.time},
+                              {"settling", result.settling},
+                              {"warnings", result.warnings}});
+  for (const std::string& warning : result.warnings) std::cerr << "rockcontact: warning: " << warning << '\n';
   std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
   summary << "block " << options.block << ": factor of safety " << result.factor_of_safety << " ("
           << status_name(result.status) << ", " << result.iterations << " trials of " << options.params.time

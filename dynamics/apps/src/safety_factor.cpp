@@ -141,7 +141,23 @@ SafetyFactorResult safety_factor(const std::vector<Block3dSpec>& blocks, const C
   const Reduction reduction(blocks, law, block);
 
   SafetyFactorResult out;
-  out.slip = safety.slip_ratio * std::cbrt(Dda3d(blocks, law, params).blocks()[block].volume);
+  const Dda3d start(blocks, law, params);
+  out.slip = safety.slip_ratio * std::cbrt(start.blocks()[block].volume);
+  std::size_t closed = 0;
+  for (const Contact3dState& c : start.contacts()) {
+    closed += (c.block_a == block || c.block_b == block) && c.mode != ContactMode3d::open;
+  }
+  if (closed > 0) {
+    const double weight = start.blocks()[block].mass * std::hypot(params.gravity[0], params.gravity[1], params.gravity[2]);
+    out.settling = weight / (static_cast<double>(closed) * std::min(law.kn, law.kt));
+  }
+  if (out.settling >= settling_warning * out.slip) {
+    out.warnings.push_back("the contacts let block '" + block_id + "' settle about " + number_text(out.settling) +
+                           " m (its weight over " + std::to_string(closed) + " closed constraints times min(kn, kt)), " +
+                           number_text(out.settling / out.slip) + " of the slip threshold " + number_text(out.slip) +
+                           " m: a trial may be called sliding for its settling alone; raise kn and kt, or the "
+                           "threshold (--slip)");
+  }
   const auto trial = [&](double factor) {
     out.trials.push_back(run_trial(reduction, params, block, safety, factor, out.slip));
     return out.trials.back().slid;

@@ -33,6 +33,14 @@
 // step damps it within tens of steps) removes it whatever the stiffness. A block that is
 // sliding keeps accelerating after settle_time, so nothing is lost but settle_time of run.
 //
+// Settling. The penalty springs give way under the block's weight W by about W / (n k), n the
+// block's closed constraints at the start and k the softer of kn and kt: the initial
+// equilibrium takes the normal part, but a trial whose reduced friction lets the springs
+// re-settle tangentially moves the block by up to that much before any sliding. When it reaches
+// settling_warning of the slip threshold, a trial can be called sliding for its settling alone
+// (kn = 1e9 N/m on a wedge whose FS is 1.55 "slid" both bracket ends, 4.5 mm against 4.48 mm):
+// the result carries a warning saying so and what to change.
+//
 // Contact dashpots. Each trial's contacts carry dashpots of damping ratio `damping_ratio` (or
 // the scene's, if larger; dda3d.hpp, "Contact damping"). A block released on penalty springs
 // rocks on them; at a small step the implicit integrator hardly damps that (1e-4 s on a wedge
@@ -71,6 +79,9 @@ struct SafetyFactorParams {
 
 inline SafetyFactorParams default_safety_factor_params() { return {}; }
 
+// The fraction of the slip threshold the estimated settling may reach before a warning (header).
+inline constexpr double settling_warning = 0.1;
+
 enum class SafetyStatus {
   converged,      // min_factor <= FS <= max_factor within tolerance
   stable_at_max,  // the block stands at max_factor: FS >= max_factor (factor_of_safety = it)
@@ -93,6 +104,10 @@ struct SafetyFactorResult {
   SafetyStatus status = SafetyStatus::converged;
   std::vector<SafetyTrial> trials;    // in the order run
   double slip = 0.0;                  // m, the displacement threshold used
+  // m: what the block's contacts let it settle, weight / (closed constraints x min(kn, kt)) at
+  // the start (header, "Settling"); 0 when it has no closed constraint.
+  double settling = 0.0;
+  std::vector<std::string> warnings;  // what costs the result accuracy, in words
 };
 
 // The factor of safety of the block `block_id` among `blocks` under `law` and `params` (header).
