@@ -128,6 +128,15 @@ SafetyTrial run_trial(const Reduction& reduction, const Dda3dParams& params, std
   return trial;
 }
 
+// The closed constraints the block takes part in (header, "Settling").
+std::size_t closed_constraints(const Dda3d& sim, std::size_t block) {
+  std::size_t closed = 0;
+  for (const Contact3dState& c : sim.contacts()) {
+    closed += (c.block_a == block || c.block_b == block) && c.mode != ContactMode3d::open;
+  }
+  return closed;
+}
+
 }  // namespace
 
 SafetyFactorResult safety_factor(const std::vector<Block3dSpec>& blocks, const ContactLaw3d& law,
@@ -143,10 +152,7 @@ SafetyFactorResult safety_factor(const std::vector<Block3dSpec>& blocks, const C
   SafetyFactorResult out;
   const Dda3d start(blocks, law, params);
   out.slip = safety.slip_ratio * std::cbrt(start.blocks()[block].volume);
-  std::size_t closed = 0;
-  for (const Contact3dState& c : start.contacts()) {
-    closed += (c.block_a == block || c.block_b == block) && c.mode != ContactMode3d::open;
-  }
+  const std::size_t closed = closed_constraints(start, block);
   if (closed > 0) {
     const double weight = start.blocks()[block].mass * std::hypot(params.gravity[0], params.gravity[1], params.gravity[2]);
     out.settling = weight / (static_cast<double>(closed) * std::min(law.kn, law.kt));
