@@ -1045,22 +1045,39 @@ void fit_to_penetration(const PartPair& pair, const Penetration& depth, std::vec
   if (std::none_of(closed.begin(), closed.end(), [](char k) { return k != 0; })) add_support_corners(pair, slab, found);
 }
 
-template <NumberPolicy Policy>
-std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {
-  std::vector<Topology> out;
+// The axis-aligned box of some parts' vertices (exact: comparisons of the input doubles).
+struct Box3 {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (std::uint32_t i = 0; i < parts.size(); ++i) {
-    out.push_back(make_topology(parts[i], i));
-    for (const Point3& p : parts[i].vertices()) {
-      const double c[3] = {p.x, p.y, p.z};
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], c[k]);
-        hi[k] = std::max(hi[k], c[k]);
+
+  void add(std::span<const ConvexPolyhedron> parts) {
+    for (const ConvexPolyhedron& part : parts) {
+      for (const Point3& p : part.vertices()) {
+        const double c[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
       }
     }
   }
-  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  mark_internal_faces<Policy>(out, face_planarity_tolerance * size);
+  double size() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
+  // Do the boxes' interiors meet? Two convex parts can overlap only where they do.
+  bool interiors_meet(const Box3& o) const {
+    for (int k = 0; k < 3; ++k) {
+      if (!(lo[k] < o.hi[k] && o.lo[k] < hi[k])) return false;
+    }
+    return true;
+  }
+};
+
+Box3 box_of(std::span<const ConvexPolyhedron> parts) {
+  Box3 box;
+  box.add(parts);
+  return box;
+}
+
+template <NumberPolicy Policy>
+std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {
+  std::vector<Topology> out;
+  for (std::uint32_t i = 0; i < parts.size(); ++i) out.push_back(make_topology(parts[i], i));
+  mark_internal_faces<Policy>(out, face_planarity_tolerance * box_of(parts).size());
   return out;
 }
 
@@ -1090,13 +1107,15 @@ std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhed
   const Frame<FT> frame{cp_parts.front().vertices().front()};
   for (const PartPair& pair : pairs) {
     // Step 4 of the header, for a pair with a penetrating or an unseparated contact, or with no
-    // closed one: a needle through a block overlaps it with no vertex inside and no edge pair
-    // crossing. A pair that touches at every contact it has does not overlap.
+    // closed one whose boxes' interiors meet: a needle through a block overlaps it with no
+    // vertex inside and no edge pair crossing. A pair that touches at every contact it has does
+    // not overlap, nor does one whose boxes at most touch (most pairs the engine asks within
+    // its detection range), which spares them the overlap verdict.
     const bool may_overlap = std::any_of(pair.decisions.begin(), pair.decisions.end(), [](const Decision& d) {
       return d.gap_sign == Sign::negative || d.unseparated;
-    }) || std::none_of(pair.decisions.begin(), pair.decisions.end(), [](const Decision& d) {
+    }) || (std::none_of(pair.decisions.begin(), pair.decisions.end(), [](const Decision& d) {
       return d.gap_sign != Sign::positive;
-    });
+    }) && box_of({pair.cp, 1}).interiors_meet(box_of({pair.tp, 1})));
     const std::optional<Penetration> depth =
         may_overlap ? penetration<Policy>(*pair.cp, *pair.tp) : std::optional<Penetration>();
     std::vector<ContactConstraint> found;
@@ -1109,16 +1128,9 @@ std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhed
     if (depth) fit_to_penetration(pair, *depth, found, closed);
     for (ContactConstraint& c : found) out.push_back(std::move(c));
   }
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (const auto parts : {cp_parts, tp_parts}) {
-    for (const ConvexPolyhedron& part : parts) {
-      for (const Point3& p : part.vertices()) {
-        const double c[3] = {p.x, p.y, p.z};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
-      }
-    }
-  }
-  merge_coincident(out, same_contact_tolerance * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+  Box3 pair = box_of(cp_parts);
+  pair.add(tp_parts);
+  merge_coincident(out, same_contact_tolerance * pair.size());
   return out;
 }
 
