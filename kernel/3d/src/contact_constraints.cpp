@@ -879,13 +879,6 @@ ContactConstraint on_penetration_plane(const Decision& d, const Slab& slab) {
   return c;
 }
 
-// The position of a constraint on the penetration plane: its midpoint with the height removed.
-Point3 in_plane(const ContactConstraint& c, const Slab& slab) {
-  const Point3 mid{0.5 * (c.point_cp.x + c.point_tp.x), 0.5 * (c.point_cp.y + c.point_tp.y),
-                   0.5 * (c.point_cp.z + c.point_tp.z)};
-  return slab.onto(mid, 0.0);
-}
-
 // The convex hull, counter-clockwise, of 2D points (Andrew's monotone chain); collinear points
 // and duplicates within `slack` (metres) dropped.
 std::vector<std::array<double, 2>> hull2(std::vector<std::array<double, 2>> p, double slack) {
@@ -1009,8 +1002,8 @@ void add_support_corners(const PartPair& pair, const Slab& slab, std::vector<Con
 }
 
 // Step 4 of the header, for an overlapping part pair (its penetration given): drop constraints
-// deeper than the pair, give the unseparated vertices the penetration plane, one constraint per
-// position on that plane, and the support corners when nothing else holds the pair.
+// deeper than the pair, give the unseparated vertices the penetration plane, and the support
+// corners when nothing else holds the pair.
 // `closed[i]` is the exact verdict that found[i] touches or penetrates (its decision's gap sign),
 // which decides whether anything holds the pair: a gap rounded to +1e-18 still holds it.
 void fit_to_penetration(const PartPair& pair, const Penetration& depth, std::vector<ContactConstraint>& found,
@@ -1025,21 +1018,11 @@ void fit_to_penetration(const PartPair& pair, const Penetration& depth, std::vec
   }
   found.resize(kept);
   closed.resize(kept);
-  std::vector<Point3> taken;
-  for (const ContactConstraint& c : found) {
-    if (dot3(c.normal, slab.normal) >= 1.0 - penetration_slack) taken.push_back(in_plane(c, slab));
-  }
+  // A corner of cp on a corner of tp gives one such constraint from each vertex, at one position
+  // on the plane: merge_coincident (step 5) keeps one.
   for (const Decision& d : pair.decisions) {
     if (!d.unseparated) continue;
-    ContactConstraint c = on_penetration_plane(d, slab);
-    const Point3 at = in_plane(c, slab);
-    const bool seen = std::any_of(taken.begin(), taken.end(), [&](const Point3& p) {
-      const Point3 apart{p.x - at.x, p.y - at.y, p.z - at.z};
-      return std::sqrt(dot3(apart, apart)) <= slab.slack;
-    });
-    if (seen) continue;
-    taken.push_back(at);
-    found.push_back(std::move(c));
+    found.push_back(on_penetration_plane(d, slab));
     closed.push_back(1);
   }
   if (std::none_of(closed.begin(), closed.end(), [](char k) { return k != 0; })) add_support_corners(pair, slab, found);

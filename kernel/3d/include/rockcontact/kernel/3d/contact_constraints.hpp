@@ -64,8 +64,8 @@
 //      other: the blocks overlap around it, as every corner of two equal cubes overlapping
 //      face-on does) takes the plane of the minimum translation: a vertex v of cp the plane of
 //      tp's lowest points along n, gap = min over tp of w.n - v.n; a vertex w of tp the plane
-//      of cp's highest, gap = w.n - max over cp of v.n; both in [-delta, 0]; one constraint per
-//      position on that plane (a corner of cp on a corner of tp is one contact, not two);
+//      of cp's highest, gap = w.n - max over cp of v.n; both in [-delta, 0] (a corner of cp on a
+//      corner of tp is one contact, not two: step 5);
 //      (c) when nothing holds the pair then (every contact dropped or none found), the corners
 //      of the overlap of cp's and tp's support features along n, projected on the plane, each
 //      with gap -delta. An unseparated vertex of a pair that only touches (its separating plane
