@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "rockcontact/kernel/3d/contact_constraints.hpp"
+#include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // The wedge family's generator (wedge_family.hpp), not the DDA on it (bench/wedge_family.py
@@ -229,4 +231,90 @@ BOOST_AUTO_TEST_CASE(the_slide_reference_is_the_net_force) {
   dyn::WedgeLimitEquilibrium plane;
   plane.mode = dyn::WedgeMode::plane_a;
   BOOST_CHECK_THROW(dyn::wedge_slide_acceleration(plane, 9.81), std::invalid_argument);
+}
+
+// A wedge sliding down its line of intersection keeps a contact polygon on each joint, and the
+// kernel gives its corners. Moved by s along i from the crest towards the daylight point, the
+// wedge's face on joint A (the triangle crest, on_a, daylight) overlaps the base's by the same
+// triangle shrunk about the daylight point by 1 - s / L, L = |daylight - crest| (a triangle
+// moved along one of its edges): area (1 - s / L)^2 times the face's. So on each joint the
+// closed constraints (normal the joint's upward one, gap within 1e-9 of the pair's size: the
+// moved vertices are rounded) must span that triangle, and no constraint may have a non-finite
+// normal. The moved faces are coplanar with the base's only to the rounding of the move, which
+// the kernel's decisions see exactly: before cone_flush_sine (tolerances.hpp) the base's
+// daylight corner, on the wedge's edge, had no plane (or a NaN normal) and the crossing of the
+// moved top edge with the base's edge on the free face was no contact, so a sliding wedge held
+// by one corner per joint tipped off it (the family's case 1 at phi = 20 slid 19 % too far).
+BOOST_AUTO_TEST_CASE(a_sliding_wedge_keeps_both_contact_polygons) {
+  const auto area_of_hull = [](std::vector<Point3> points, const Point3& n) {
+    // Points projected on the plane of unit normal n: the area of their convex hull (Andrew's
+    // monotone chain in a basis (e1, e2) of the plane); 0 for fewer than three.
+    if (points.size() < 3) return 0.0;
+    const Point3 helper = std::abs(n.x) < 0.9 ? Point3{1, 0, 0} : Point3{0, 1, 0};
+    Point3 e1 = cross(n, helper);
+    const double l = std::sqrt(dot(e1, e1));
+    e1 = {e1.x / l, e1.y / l, e1.z / l};
+    const Point3 e2 = cross(n, e1);
+    std::vector<std::pair<double, double>> q;
+    for (const Point3& p : points) q.emplace_back(dot(p, e1), dot(p, e2));
+    std::sort(q.begin(), q.end());
+    const auto turn = [](auto o, auto a, auto b) {
+      return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
+    };
+    std::vector<std::pair<double, double>> hull(2 * q.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      while (k >= 2 && turn(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+      hull[k++] = q[i];
+    }
+    for (std::size_t i = q.size() - 1, lower = k + 1; i-- > 0;) {
+      while (k >= lower && turn(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+      hull[k++] = q[i];
+    }
+    double twice = 0.0;
+    for (std::size_t i = 0; i + 1 < k; ++i) twice += hull[i].first * hull[i + 1].second - hull[i + 1].first * hull[i].second;
+    return 0.5 * std::abs(twice);
+  };
+  const auto triangle_area = [](const Point3& a, const Point3& b, const Point3& c) {
+    const Point3 m = cross(minus(b, a), minus(c, a));
+    return 0.5 * std::sqrt(dot(m, m));
+  };
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 10, 20.0)) {
+    const dyn::Scene3d scene = dyn::wedge_scene(c);
+    const dyn::Block3dSpec &base = scene.blocks[0], &wedge = scene.blocks[1];
+    const dyn::WedgeCorners k = dyn::wedge_corners(c);
+    const Point3 along = minus(k.daylight, k.crest);
+    const double length = std::sqrt(dot(along, along));
+    const double size = 40.0;  // m, the region's longest side: the pair's scale
+    for (const double fraction : {1.0e-4, 0.01, 0.05, 0.2}) {
+      const double s = fraction * length;
+      std::vector<Point3> moved;
+      for (const Point3& v : wedge.parts[0].vertices()) {
+        moved.push_back({v.x + s * along.x / length, v.y + s * along.y / length, v.z + s * along.z / length});
+      }
+      const auto faces = wedge.parts[0].input_faces();
+      const rockcontact::kernel::ConvexPolyhedron slid = rockcontact::kernel::ConvexPolyhedron::make(
+          "wedge", moved, std::vector<rockcontact::kernel::ConvexPolyhedron::Face>(faces.begin(), faces.end()));
+      const auto constraints = rockcontact::kernel::contact_constraints<rockcontact::kernel::Filtered>(
+          base.parts, std::span<const rockcontact::kernel::ConvexPolyhedron>(&slid, 1), 1.0e-6 * size);
+      BOOST_TEST_CONTEXT("case seed " << c.seed << ", moved " << fraction << " L") {
+        for (const auto& constraint : constraints) {
+          BOOST_TEST((std::isfinite(constraint.normal.x) && std::isfinite(constraint.normal.y) &&
+                      std::isfinite(constraint.normal.z)));
+        }
+        for (const auto& [joint, on_joint] : {std::pair{c.a, k.on_a}, std::pair{c.b, k.on_b}}) {
+          const Point3 n = upward_normal(joint);
+          std::vector<Point3> corners;
+          for (const auto& constraint : constraints) {
+            if (dot(constraint.normal, n) > 1.0 - 1.0e-9 && constraint.gap <= 1.0e-9 * size) {
+              corners.push_back(constraint.point_tp);
+            }
+          }
+          const double expected = std::pow(1.0 - fraction, 2) * triangle_area(k.crest, on_joint, k.daylight);
+          BOOST_TEST(corners.size() >= 3u);
+          BOOST_TEST(area_of_hull(corners, n) == expected, boost::test_tools::tolerance(1.0e-6));
+        }
+      }
+    }
+  }
 }

@@ -225,7 +225,9 @@ void mark_internal_faces(std::vector<Topology>& parts, double flush) {
         std::optional<Point3> above;
         double highest = 0.0;
         for (const Point3& x : other.poly->vertices()) {
-          if (orient3d<Policy>(f0, f1, f2, x) != Sign::positive) continue;
+          // Above by more than the rounding: a vertex the two parts share lies on the plane but for
+          // it, and seen from there every point of the plane looks inside every loop.
+          if (orient3d<Policy>(f0, f1, f2, x) != Sign::positive || within<Policy>(face_height(t, f, x), flush)) continue;
           const double h = std::abs(dot(cross(sub<double>(f0, f1), sub<double>(f0, f2)), sub<double>(f0, x)));
           if (!above || h > highest) above = x, highest = h;
         }
@@ -304,6 +306,25 @@ Sign edge_side(const Topology& t, std::uint32_t f, const Point3& p, const Point3
   });
 }
 
+// edge_side, but zero when v projects inside the edge's line by no more than `tie` (metres): a
+// vertex meant to lie on an edge (a vertex of a block slid along a concave edge it rests in) is
+// off it by the rounding of its move, and would otherwise fall into the Voronoi region of a
+// face beside the edge, an internal one where two parts of a block meet (degree 8).
+template <NumberPolicy Policy>
+Sign edge_side_within(const Topology& t, std::uint32_t f, const Point3& p, const Point3& q, const Point3& v, double tie) {
+  const Sign s = edge_side<Policy>(t, f, p, q, v);
+  if (s != Sign::negative || !(tie > 0.0)) return s;
+  const auto& loop = t.face(f);
+  const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+  const Sign beyond = decide<Policy>([&](auto as) {
+    using T = typename decltype(as)::type;
+    const Vec<T> m = cross(sub<T>(p, q), cross(sub<T>(f0, f1), sub<T>(f0, f2)));
+    const T along = dot(m, sub<T>(p, v));
+    return T(T(along * along) - T(T(T(tie) * T(tie)) * dot(m, m)));
+  });
+  return beyond == Sign::positive ? s : Sign::zero;
+}
+
 // Sign of (v - a) . (b - a) (degree 2).
 template <NumberPolicy Policy>
 Sign dot_sign(const Point3& a, const Point3& v, const Point3& b) {
@@ -318,6 +339,17 @@ struct Located {
   std::uint32_t index;
   bool inside;    // v strictly inside Y: a penetrating vertex
   bool touching;  // v on Y's boundary
+  bool near;      // touching, or off the boundary by no more than the rounding (Ties::rounding)
+};
+
+// The slack of decisions about coincidence, metres, from the pair's extent: `tie` =
+// same_contact_tolerance of it (the shortest exit's ties and a vertex on an edge's line, which
+// choose among contacts but set no gap), `rounding` = coincidence_tolerance of it (a vertex off
+// the feature it meets by no more than the rounding of a move: its no-overlap check takes
+// cone_flush_angle; its gap stays the exact one).
+struct Ties {
+  double tie = 0.0;
+  double rounding = 0.0;
 };
 
 // The shortest exit of a vertex strictly inside Y: the non-internal face it is least deep
@@ -332,7 +364,7 @@ std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
     }
   }
   if (!best) return std::nullopt;
-  return Located{Feature::Kind::face, *best, true, false};
+  return Located{Feature::Kind::face, *best, true, false, false};
 }
 
 // Step 1 of the header for a vertex v on or outside Y: the feature whose relative interior holds
@@ -340,7 +372,8 @@ std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
 // point lies in the relative interior of exactly one feature), so the first match is the answer.
 template <NumberPolicy Policy>
 std::optional<Located> closest_feature(const Point3& v, const Topology& y, const std::vector<Sign>& heights,
-                                       bool touching, double tolerance) {
+                                       bool touching, double tolerance, const Ties& ties) {
+  const double tie = ties.tie;
   const ConvexPolyhedron& poly = *y.poly;
   for (std::uint32_t w = 0; w < poly.size(); ++w) {
     const Point3 pw = y.p(w);
@@ -353,17 +386,15 @@ std::optional<Located> closest_feature(const Point3& v, const Topology& y, const
       const Vec<T> d = sub<T>(pw, v);
       return dot(d, d);
     };
-    if (!touching && !within_squared<Policy>(squared, [](auto as) { return typename decltype(as)::type(1); },
-                                             tolerance)) {
-      return std::nullopt;
-    }
-    return Located{Feature::Kind::vertex, w, false, touching};
+    const auto one = [](auto as) { return typename decltype(as)::type(1); };
+    if (!touching && !within_squared<Policy>(squared, one, tolerance)) return std::nullopt;
+    return Located{Feature::Kind::vertex, w, false, touching, touching || within_squared<Policy>(squared, one, ties.rounding)};
   }
   for (std::uint32_t e = 0; e < poly.edges().size(); ++e) {
     const Point3 a = y.p(poly.edges()[e].first), b = y.p(poly.edges()[e].second);
     const bool region = dot_sign<Policy>(a, v, b) == Sign::positive && dot_sign<Policy>(b, v, a) == Sign::positive &&
-                        edge_side<Policy>(y, y.edge_faces[e][0], a, b, v) != Sign::negative &&
-                        edge_side<Policy>(y, y.edge_faces[e][1], b, a, v) != Sign::negative;
+                        edge_side_within<Policy>(y, y.edge_faces[e][0], a, b, v, tie) != Sign::negative &&
+                        edge_side_within<Policy>(y, y.edge_faces[e][1], b, a, v, tie) != Sign::negative;
     if (!region) continue;
     const auto squared = [&](auto as) {
       using T = typename decltype(as)::type;
@@ -376,7 +407,8 @@ std::optional<Located> closest_feature(const Point3& v, const Topology& y, const
       return dot(d, d);
     };
     if (!touching && !within_squared<Policy>(squared, length, tolerance)) return std::nullopt;
-    return Located{Feature::Kind::edge, e, false, touching};
+    return Located{Feature::Kind::edge, e, false, touching,
+                   touching || within_squared<Policy>(squared, length, ties.rounding)};
   }
   for (std::uint32_t f = 0; f < heights.size(); ++f) {
     if (heights[f] == Sign::negative) continue;
@@ -387,14 +419,15 @@ std::optional<Located> closest_feature(const Point3& v, const Topology& y, const
     }
     if (!interior) continue;
     if (y.internal[f] || (!touching && !within<Policy>(face_height(y, f, v), tolerance))) return std::nullopt;
-    return Located{Feature::Kind::face, f, false, touching};
+    return Located{Feature::Kind::face, f, false, touching, touching || within<Policy>(face_height(y, f, v), ties.rounding)};
   }
   return std::nullopt;  // only under Float, whose rounded signs may contradict each other
 }
 
 // Step 1 of the header: where vertex v of X stands against Y, if it is a contact.
 template <NumberPolicy Policy>
-std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double tolerance) {
+std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double tolerance, const Ties& ties) {
+  const double tie = ties.tie;
   std::vector<Sign> heights(y.internal.size());
   bool inside = true, touching = true;
   for (std::uint32_t f = 0; f < heights.size(); ++f) {
@@ -403,7 +436,21 @@ std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double 
     inside &= heights[f] == Sign::negative;
     touching &= heights[f] != Sign::positive;
   }
-  if (inside) return shortest_exit_face<Policy>(v, y);
+  if (inside) {
+    // Inside by no more than `tie` below some faces: on the boundary but for the rounding (a
+    // block's vertex on an edge of the other, moved there along it), located as touching, so
+    // the edge's candidate planes decide (step 3) and not the rounding of the depths.
+    bool near = false;
+    for (std::uint32_t f = 0; f < heights.size(); ++f) {
+      const auto height = face_height(y, f, v);
+      const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
+      if (tie > 0.0 && within<Policy>(depth, tie)) heights[f] = Sign::zero, near = true;
+    }
+    if (near) {
+      if (auto at = closest_feature<Policy>(v, y, heights, true, tolerance, ties)) return at;
+    }
+    return shortest_exit_face<Policy>(v, y);
+  }
   if (!touching) {
     if (!(tolerance > 0.0)) return std::nullopt;
     // v's distance to Y is at least its height over any face: a cheap exact rejection.
@@ -411,7 +458,7 @@ std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double 
       if (heights[f] == Sign::positive && !within<Policy>(face_height(y, f, v), tolerance)) return std::nullopt;
     }
   }
-  return closest_feature<Policy>(v, y, heights, touching, tolerance);
+  return closest_feature<Policy>(v, y, heights, touching, tolerance, ties);
 }
 
 // The tangent cone of a block at a contact point, by generators: rays (from, to) and lines
@@ -435,12 +482,42 @@ Cone edge_cone(const Topology& t, std::uint32_t e) {
   return cone;
 }
 
-// The no-overlap check of §2.2.1 for a candidate plane oriented X -> Y: X's cone on its
-// non-positive side, Y's on its non-negative side.
+// The side of the plane through an edge pair (normal n = (p1 - p0) x (q1 - q0)) the direction
+// r = r1 - r0 points to: the sign of n . r, or zero when r is within cone_flush_angle of the
+// plane ((n . r)^2 <= sin^2 |n|^2 |r|^2, exact, degree 6; tolerances.hpp says why).
 template <NumberPolicy Policy>
-bool separates(const Plane& plane, const Cone& x, const Cone& y) {
+Sign flush_side(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1, const Point3& r0,
+                const Point3& r1, bool flush = true) {
+  const Sign s = triple_sign<Policy>(p0, p1, q0, q1, r0, r1);
+  if (s == Sign::zero || !flush) return s;
+  {  // In double first: |n . r| above 1.4 sin |n| |r| is beyond whatever the rounding, which is
+     // a few ulps of |n| |r|.
+    const double ux = p1.x - p0.x, uy = p1.y - p0.y, uz = p1.z - p0.z;
+    const double vx = q1.x - q0.x, vy = q1.y - q0.y, vz = q1.z - q0.z;
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    const double rx = r1.x - r0.x, ry = r1.y - r0.y, rz = r1.z - r0.z;
+    const double along = nx * rx + ny * ry + nz * rz;
+    const double bound = 2.0 * cone_flush_sine * cone_flush_sine * (nx * nx + ny * ny + nz * nz) * (rx * rx + ry * ry + rz * rz);
+    if (std::isfinite(bound) && along * along > bound) return s;
+  }
+  const Sign beyond = decide<Policy>([&](auto as) {
+    using T = typename decltype(as)::type;
+    const Vec<T> n = cross(sub<T>(p0, p1), sub<T>(q0, q1));
+    const Vec<T> r = sub<T>(r0, r1);
+    const T along = dot(n, r);
+    return T(T(along * along) - T(T(cone_flush_sine * cone_flush_sine) * T(dot(n, n) * dot(r, r))));
+  });
+  return beyond == Sign::positive ? s : Sign::zero;
+}
+
+// The no-overlap check of §2.2.1 for a candidate plane oriented X -> Y: X's cone on its
+// non-positive side, Y's on its non-negative side, each generator up to cone_flush_angle
+// (flush_side): faces that are coplanar but for the rounding of moved or cut vertices, or a
+// block tilted by its penalty settling, touch along the plane instead of crossing it.
+template <NumberPolicy Policy>
+bool separates(const Plane& plane, const Cone& x, const Cone& y, bool flush) {
   const auto side = [&](const std::pair<Point3, Point3>& r) {
-    const Sign s = triple_sign<Policy>(plane.p0, plane.p1, plane.q0, plane.q1, r.first, r.second);
+    const Sign s = flush_side<Policy>(plane.p0, plane.p1, plane.q0, plane.q1, r.first, r.second, flush);
     return plane.sigma > 0 ? s : -s;
   };
   return std::all_of(x.rays.begin(), x.rays.end(), [&](const auto& r) { return side(r) != Sign::positive; }) &&
@@ -475,7 +552,7 @@ auto candidate_distance(const Plane& plane, Point3 v, Point3 y0, Point3 y1, bool
 // Step 3 of the header: the candidate planes of a vertex-edge or vertex-vertex contact that pass
 // the no-overlap check, in tie-break order, and the shortest exit among them.
 template <NumberPolicy Policy>
-void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topology& y, const Located& at) {
+void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topology& y, const Located& at, double tie) {
   const bool edge = at.kind == Feature::Kind::edge;
   const Cone x_cone = vertex_cone(x, v);
   const Cone y_cone = edge ? edge_cone(y, at.index) : vertex_cone(y, at.index);
@@ -501,12 +578,25 @@ void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topolog
     }
   }
   for (const Plane& plane : planes) {
-    if (separates<Policy>(plane, x_cone, y_cone)) d.candidates.push_back(plane);
+    if (separates<Policy>(plane, x_cone, y_cone, at.near)) d.candidates.push_back(plane);
   }
   const auto distance = [&](const Plane& plane) { return candidate_distance(plane, d.x0, d.y0, d.y1, edge); };
+  // Distances within `tie` of each other are a tie, which the order above breaks: at a touch
+  // between faces coplanar but for rounding (a block slid along the faces it rests on), every
+  // candidate through the contact point is within a few ulps of 0, and their rounding, not the
+  // geometry, would choose. Beyond `tie` (far above the rounding of the double estimate) the
+  // larger distance wins.
+  const auto estimate = [&](const Plane& plane) {
+    const auto dd = distance(plane);
+    return dd.numerator(As<double>{}) / std::sqrt(dd.denominator_squared(As<double>{}));
+  };
   const Plane* best = nullptr;
+  double best_distance = 0.0;
   for (const Plane& plane : d.candidates) {
-    if (!best || compare_distances<Policy>(distance(plane), distance(*best)) == Sign::positive) best = &plane;
+    const double here = estimate(plane);
+    const bool wins = !best || (tie > 0.0 ? here > best_distance + tie
+                                          : compare_distances<Policy>(distance(plane), distance(*best)) == Sign::positive);
+    if (wins) best = &plane, best_distance = here;
   }
   d.line_normal = best == nullptr;
   if (best) {
@@ -520,8 +610,8 @@ void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topolog
 // Steps 1 and 3 for vertex v of X against Y.
 template <NumberPolicy Policy>
 std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool x_is_cp, const Topology& y,
-                                        double tolerance) {
-  const std::optional<Located> at = locate_vertex<Policy>(x.p(v), y, tolerance);
+                                        double tolerance, const Ties& ties) {
+  const std::optional<Located> at = locate_vertex<Policy>(x.p(v), y, tolerance, ties);
   if (!at) return std::nullopt;
   Decision d{};
   d.x_is_cp = x_is_cp;
@@ -537,7 +627,7 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
       d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
       // A vertex on a face, with an edge of X leaving it into Y: the face's plane does not
       // separate the blocks there.
-      d.unseparated = at->touching && !separates<Policy>(d.plane, vertex_cone(x, v), Cone{});
+      d.unseparated = at->touching && !separates<Policy>(d.plane, vertex_cone(x, v), Cone{}, true);
       return d;
     case Feature::Kind::edge:
       d.type = ConstraintType::vertex_edge;
@@ -549,7 +639,7 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
       d.y0 = d.y1 = y.p(at->index);
       break;
   }
-  choose_plane<Policy>(d, x, v, y, *at);
+  choose_plane<Policy>(d, x, v, y, *at, ties.tie);
   // A touch with no separating candidate: the blocks overlap around the touching point (a
   // corner of one on a coincident corner or edge of the other, as with identical blocks), or
   // the only separating plane is an internal face.
@@ -558,12 +648,19 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
 }
 
 // The common non-zero sign of triple(origin -> x) against one normal over the given points, or
-// zero when both signs occur or all are zero.
+// zero when both signs occur or all are zero; a point within cone_flush_angle of the plane
+// counts as on it (flush_side: a face of the edge coplanar with the other edge's but for rounding
+// or settling, as where a block slides along a face and its edges cross the face's edges).
+// The normal is that of `triple`, (b - a) x (d - c).
 template <NumberPolicy Policy>
-Sign common_side(const TripleSigns<Policy>& triple, const Point3& origin, std::initializer_list<Point3> points) {
+Sign common_side(const TripleSigns<Policy>& triple, const std::array<Point3, 4>& abcd, const Point3& origin,
+                 std::initializer_list<Point3> points) {
   Sign side = Sign::zero;
   for (const Point3& p : points) {
-    const Sign s = triple(origin, p);
+    Sign s = triple(origin, p);
+    if (s != Sign::zero && flush_side<Policy>(abcd[0], abcd[1], abcd[2], abcd[3], origin, p) == Sign::zero) {
+      s = Sign::zero;
+    }
     if (s == Sign::zero) continue;
     if (side != Sign::zero && s != side) return Sign::zero;
     side = s;
@@ -610,6 +707,25 @@ bool segment_meets(const Topology& t, const Point3& a, const Point3& b) {
   return true;
 }
 
+// Are [a, b] and [c, d] within cone_flush_angle of parallel (|n|^2 <= sin^2 |b - a|^2 |d - c|^2,
+// n = (b - a) x (d - c), exact, degree 4)? Their crossing then runs along them a thousand
+// times faster than they move across each other, and its plane is the rounding's: edges meant
+// to be collinear (a block's edge slid along the concave edge it rests in) cross at an angle of
+// 1e-16, where the construction divides by |n|^2 and gives no number. The vertices at the ends
+// of their overlap carry such a contact, as for parallel edges.
+template <NumberPolicy Policy>
+bool nearly_parallel(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = d.x - c.x, vy = d.y - c.y, vz = d.z - c.z;
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const double bound = cone_flush_sine * cone_flush_sine * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
+  if (std::isfinite(bound) && nx * nx + ny * ny + nz * nz > 2.0 * bound) return false;
+  return decide<Policy>([&](auto as) {
+           using T = typename decltype(as)::type;
+           const Vec<T> u = sub<T>(a, b), v = sub<T>(c, d), n = cross(u, v);
+           return T(dot(n, n) - T(T(T(cone_flush_sine * cone_flush_sine) * dot(u, u)) * dot(v, v)));
+         }) != Sign::positive;
+}
+
 // Step 2 of the header: edge e = [a, b] of X (cp) against edge g = [c, d] of Y (tp).
 template <NumberPolicy Policy>
 std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const Topology& y, std::uint32_t g,
@@ -642,10 +758,12 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   const auto [xf0, xf1] = x.edge_faces[e];
   const auto [yf0, yf1] = y.edge_faces[g];
   const TripleSigns<Policy> triple(a, b, c, d);
-  const Sign side_x = common_side(triple, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
+  const std::array<Point3, 4> abcd{a, b, c, d};
+  const Sign side_x = common_side(triple, abcd, a, {x.p(x.off_edge(xf0, ia, ib)), x.p(x.off_edge(xf1, ia, ib))});
   if (side_x == Sign::zero) return std::nullopt;
-  const Sign side_y = common_side(triple, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
+  const Sign side_y = common_side(triple, abcd, c, {y.p(y.off_edge(yf0, ic, id)), y.p(y.off_edge(yf1, ic, id))});
   if (side_y != -side_x) return std::nullopt;
+  if (nearly_parallel<Policy>(a, b, c, d)) return std::nullopt;
   const Plane plane{a, b, c, d, side_x == Sign::positive ? -1 : 1, Plane::Source::edge_pair, e, g};
   const Sign gap_sign = -side_x * triple(a, c);
   const auto gap = [=](auto as) {
@@ -672,24 +790,49 @@ std::optional<Decision> edge_decision(const Topology& x, std::uint32_t e, const 
   return out;
 }
 
+// The facet side test of detail::MinkowskiEdgePairs's Gauss-map pruning, with an edge within
+// cone_flush_angle of the facet's plane counted as in it (flush_side): where two faces are
+// coplanar but for rounding or settling (a block sliding along the face it rests on), an edge of
+// one crossing an edge of the other at a corner of their contact polygon has its arc end on the
+// other's arc, which the exact signs would place just off it.
+template <NumberPolicy Policy>
+class FlushFacetSides {
+ public:
+  FlushFacetSides(const Point3& g0, const Point3& g1, const Point3& g2) : g0_(g0), g1_(g1), g2_(g2) {}
+  Sign operator()(const Point3& e0, const Point3& e1) const { return flush_side<Policy>(g0_, g1_, g0_, g2_, e0, e1); }
+
+ private:
+  const Point3 &g0_, &g1_, &g2_;
+};
+
 template <NumberPolicy Policy>
 void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::vector<Decision>& out) {
+  // The pair's extent, for its Ties.
+  std::array<double, 3> lo{cp.p(0).x, cp.p(0).y, cp.p(0).z}, hi = lo;
+  for (const Topology* t : {&cp, &tp}) {
+    for (const Point3& p : t->poly->vertices()) {
+      const std::array<double, 3> c{p.x, p.y, p.z};
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+    }
+  }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const Ties ties{same_contact_tolerance * extent, coincidence_tolerance * extent};
   std::set<std::pair<std::uint32_t, std::uint32_t>> vertex_pairs;  // (cp vertex, tp vertex)
   for (std::uint32_t v = 0; v < cp.poly->size(); ++v) {
-    if (auto d = vertex_decision<Policy>(cp, v, true, tp, tolerance)) {
+    if (auto d = vertex_decision<Policy>(cp, v, true, tp, tolerance, ties)) {
       if (d->type == ConstraintType::vertex_vertex) vertex_pairs.emplace(v, d->y_feature.index);
       out.push_back(std::move(*d));
     }
   }
   for (std::uint32_t w = 0; w < tp.poly->size(); ++w) {
-    if (auto d = vertex_decision<Policy>(tp, w, false, cp, tolerance)) {
+    if (auto d = vertex_decision<Policy>(tp, w, false, cp, tolerance, ties)) {
       if (d->type == ConstraintType::vertex_vertex && vertex_pairs.count({d->y_feature.index, w})) continue;
       out.push_back(std::move(*d));
     }
   }
   // An edge-edge contact needs planes through e and g supporting cp and tp on opposite sides:
   // e x g is then a facet normal of the Minkowski difference, which the Gauss-map test keeps.
-  const detail::MinkowskiEdgePairs<Policy> edge_pairs(*cp.poly, *tp.poly);
+  const detail::MinkowskiEdgePairs<Policy, FlushFacetSides> edge_pairs(*cp.poly, *tp.poly);
   for (std::uint32_t e = 0; e < cp.poly->edges().size(); ++e) {
     for (std::uint32_t g = 0; g < tp.poly->edges().size(); ++g) {
       if (!edge_pairs.may_be_facet(e, g)) continue;

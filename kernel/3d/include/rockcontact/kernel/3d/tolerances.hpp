@@ -35,4 +35,30 @@ inline constexpr double penetration_slack = 1e-10;
 // Dimensionless. Larger merges nearby contacts; smaller counts a shared vertex twice.
 inline constexpr double same_contact_tolerance = 1e-9;
 
+// A vertex off the feature of the other block it meets by no more than this fraction of the
+// pair's extent is on it but for rounding (contact_constraints.hpp, step 3): its candidate
+// planes are checked with cone_flush_sine, as at an exact touch, while its gap stays the exact
+// distance. A block moved along the face or edge it rests on (a wedge sliding along its line of
+// intersection) has its vertices off that feature by a few ulps of their coordinates (1e-16
+// relative near the origin, 1e-14 after 10^4 steps of rounding); exactly, no plane then passes,
+// and the normal would be the line to the feature, 1e-16 long. Dimensionless. Larger takes
+// truly separated near pairs (the reference pairs go down to 7e-10 of their size) for touching
+// ones; smaller misses rounded touches.
+inline constexpr double coincidence_tolerance = 1e-12;
+
+// The sine of the angle within which a direction counts as lying in a plane when the kernel
+// asks which side of a contact plane a block's tangent cone is on (contact_constraints.hpp, steps
+// 2 and 3): the no-overlap check of a candidate plane and the supporting sides of an edge pair.
+// Faces meant to be coplanar are not exactly so once blocks move: the rotation of a step rounds
+// their vertices (1e-16 relative), and a block resting on its penalty springs tilts by its
+// settling over its size (1e-6 to 1e-4 rad at the usual kn). Exactly, the tilted face then
+// crosses the plane of the face it rests on, no candidate plane of a vertex on an edge passes,
+// and coplanar edges crossing at a corner of the contact polygon do not support their blocks: a
+// wedge sliding along its joints lost the corners of its contact polygons this way. 2^-10
+// (about 1e-3 rad, 0.056 degrees) is ten times the largest settling tilt and far below the 1-3
+// degrees a contact plane may turn in a step (seed 001 §5.2); a power of two, so that its square
+// is exact in the exact test. Dimensionless. Larger takes truly crossing cones for touching ones;
+// smaller lets settled blocks lose contacts again.
+inline constexpr double cone_flush_sine = 0x1p-10;
+
 }  // namespace rockcontact::kernel

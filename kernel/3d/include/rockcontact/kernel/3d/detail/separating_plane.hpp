@@ -80,7 +80,20 @@ Gap edge_gap(const ConvexPolyhedron& a, const ConvexPolyhedron::Edge& ea, const 
 // of the difference stays a candidate. The signs are triple products of input points, one per
 // (facet, edge of the other block), computed once: F_B E_A + F_A E_B predicates instead of the
 // E_A E_B (V_A + V_B) of testing every pair.
+// The sign of (outward normal of one facet, (g1 - g0) x (g2 - g0)) . (an edge's direction),
+// exactly: the facet's side test for MinkowskiEdgePairs (contact_constraints.cpp has one that
+// takes directions nearly in the facet's plane for in it).
 template <NumberPolicy Policy>
+class FacetSides {
+ public:
+  FacetSides(const Point3& g0, const Point3& g1, const Point3& g2) : normal_(g0, g1, g0, g2) {}
+  Sign operator()(const Point3& e0, const Point3& e1) const { return normal_(e0, e1); }
+
+ private:
+  TripleSigns<Policy> normal_;
+};
+
+template <NumberPolicy Policy, template <NumberPolicy> class Sides = FacetSides>
 class MinkowskiEdgePairs {
  public:
   MinkowskiEdgePairs(const ConvexPolyhedron& a, const ConvexPolyhedron& b)
@@ -97,13 +110,12 @@ class MinkowskiEdgePairs {
   }
 
  private:
-  // Signs of (outward normal of facet g of p) . (direction of edge e of q), g-major; the normal of
-  // g is (g1 - g0) x (g2 - g0).
+  // Signs of (outward normal of facet g of p) . (direction of edge e of q), g-major.
   static std::vector<Sign> normal_dot_edges(const ConvexPolyhedron& p, const ConvexPolyhedron& q) {
     std::vector<Sign> out;
     out.reserve(p.faces().size() * q.edges().size());
     for (const auto& g : p.faces()) {
-      const TripleSigns<Policy> normal(p[g[0]], p[g[1]], p[g[0]], p[g[2]]);
+      const Sides<Policy> normal(p[g[0]], p[g[1]], p[g[2]]);
       for (const auto& [e0, e1] : q.edges()) out.push_back(normal(q[e0], q[e1]));
     }
     return out;
