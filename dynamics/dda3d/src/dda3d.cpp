@@ -485,7 +485,8 @@ struct Dda3d::Impl {
   void hold_contacts(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
                      std::vector<kernel::ContactConstraint>& found) const;
   std::vector<const Constraint*> vanished_contacts(std::span<const Constraint> earlier,
-                                                   const std::vector<ConstraintKey>& found) const;
+                                                   const std::vector<ConstraintKey>& keys,
+                                                   std::span<const kernel::ContactConstraint> found) const;
   const Constraint* transferred_from(const std::vector<const Constraint*>& vanished,
                                      const kernel::ContactConstraint& c) const;
   bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
@@ -770,17 +771,30 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
   kernel::merge_coincident(found, std::min(range, merge_ratio * std::min(blocks[a].size, blocks[b].size)));
 }
 
-// Contact transfer: the closed constraints of the pair in the last list whose key is no longer
-// found (their features changed: a crossing moved past an edge's end, a vertex slid from a face
-// onto an edge).
+// Is `now` (with the key of `before`) still `before`'s contact? Not when its normal turned by
+// more than transfer_angle: the same two vertices, pressed together on a joint's plane before the
+// initial equilibrium, are found after it a little apart along the line joining them, while the
+// contact on the plane goes on as a vertex held on the face (hold_contacts); the record is the
+// held constraint's to take over (by transfer), not the open one's.
+namespace {
+bool continues(const Constraint& before, const kernel::ContactConstraint& now) {
+  return vec(before.geometry.normal).dot(vec(now.normal)) >= std::cos(transfer_angle);
+}
+}  // namespace
+
+// Contact transfer: the closed constraints of the pair in the last list that no constraint found
+// now continues (their features changed: a crossing moved past an edge's end, a vertex slid from
+// a face onto an edge; or the features are found with another plane).
 std::vector<const Constraint*> Dda3d::Impl::vanished_contacts(std::span<const Constraint> earlier,
-                                                             const std::vector<ConstraintKey>& found) const {
-  const std::set<ConstraintKey> keys(found.begin(), found.end());
+                                                             const std::vector<ConstraintKey>& keys,
+                                                             std::span<const kernel::ContactConstraint> found) const {
+  std::map<ConstraintKey, std::size_t> at;
+  for (std::size_t i = 0; i < keys.size(); ++i) at.emplace(keys[i], i);
   std::vector<const Constraint*> out;
   for (const Constraint& k : earlier) {
-    if (k.state.mode != detail::ContactMode::open && !keys.contains(k.key)) {
-      out.push_back(&k);
-    }
+    if (k.state.mode == detail::ContactMode::open) continue;
+    const auto it = at.find(k.key);
+    if (it == at.end() || !continues(k, found[it->second])) out.push_back(&k);
   }
   return out;
 }
@@ -852,7 +866,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
   const detail::ContactLaw3d pair = pair_law(ba, bb);
   std::vector<ConstraintKey> keys;
   for (const kernel::ContactConstraint& c : found) keys.push_back(key_of(a, b, ba, bb, c));
-  const std::vector<const Constraint*> vanished = vanished_contacts(earlier, keys);
+  const std::vector<const Constraint*> vanished = vanished_contacts(earlier, keys, found);
   // The dashpots' coefficients (dda3d.hpp), of the pair's reduced mass.
   const double reduced = ba.dof == 0 ? bb.mass : bb.dof == 0 ? ba.mass : ba.mass * bb.mass / (ba.mass + bb.mass);
   const double dashpot_normal = 2.0 * law.damping_ratio * std::sqrt(reduced * pair.kn);
@@ -872,20 +886,22 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.dashpot_tangential = dashpot_tangential;
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
-    if (const auto it = previous.find(k.key); it != previous.end()) {
+    if (const auto it = previous.find(k.key); it != previous.end() && continues(*it->second, c)) {
       k.state = it->second->state;
     } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
       // The transferred spring keeps its normal force: its offset moves with the gap.
       k.state = from->state;
       k.state.shear -= k.state.shear.dot(vec(c.normal)) * vec(c.normal);
-      k.state.offset = std::min(0.0, c.gap - (from->update.gap - from->state.offset));
+      k.state.offset = std::min(0.0, k.kinematics.gap - (from->update.gap - from->state.offset));
     } else {
       k.state.mode = c.gap > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
       // Born penetrating inside an overlap the other constraints of the pair resist (its
       // features came into contact within it, as a crossing that moved onto new edges): it
       // resists further penetration only (contact_terms3d.hpp). At the start, an overlap
       // given in the scene is pushed out in full.
-      if (!at_start && c.gap < 0.0) k.state.offset = c.gap;
+      // (The kinematics' gap, which the spring acts on: the kernel's may differ by a rounding,
+      // which the check below would take for tension.)
+      if (!at_start && c.gap < 0.0) k.state.offset = std::min(0.0, k.kinematics.gap);
     }
     // A closed record on a pair now apart beyond what its tensile strength holds (the
     // geometry of this step, re-detected, is the judge, as after a solve) starts open: its
