@@ -15,6 +15,7 @@ is only a bound (status stable_at_max or slides_at_min). Standard library only.
 
     python3 bench/wedge_family.py --seed 1 --count 10 --phi 40
     python3 bench/wedge_family.py --seed 1 --count 5 --phi 20 --kn 1e10 --dt 1e-4
+    python3 bench/wedge_family.py --seed 1 --count 10 --phi 40 --kn auto
 
 The same seed gives the same wedges at every friction angle.
 """
@@ -36,12 +37,18 @@ def arguments():
     p.add_argument("--seed", type=int, default=1, help="the family's seed (default 1)")
     p.add_argument("--count", type=int, default=10, help="number of wedges (default 10)")
     p.add_argument("--phi", type=float, default=40.0, help="friction angle on both joints, degrees (default 40)")
-    p.add_argument("--kn", type=float, default=1e10, help="normal penalty, N/m; kt = kn / 10 (default 1e10)")
+    p.add_argument("--kn", type=penalty, default=1e10,
+                   help="normal penalty, N/m, or auto (the scenes then leave kn and kt to the library); "
+                        "kt = kn / 10 (default 1e10)")
     p.add_argument("--dt", type=float, default=1e-4, help="time step, s (default 1e-4)")
     p.add_argument("--exe", default=str(ROOT / "build" / "rockcontact"), help="the rockcontact executable")
     p.add_argument("--scenes-exe", help="wedge_family_scenes (default: bench/ beside --exe)")
     p.add_argument("--keep", help="write the scenes and runs here instead of a temporary directory")
     return p.parse_args()
+
+
+def penalty(text):
+    return text if text == "auto" else float(text)
 
 
 def timed(command):
@@ -72,7 +79,7 @@ def slide(case, tracks):
 
 
 def safety_factors(args, cases, work, failures):
-    print(f"Factor of safety, phi = {args.phi:g} deg, kn = {args.kn:g} N/m, kt = kn/10, dt = {args.dt:g} s "
+    print(f"Factor of safety, phi = {args.phi:g} deg, kn = {args.kn} N/m, kt = kn/10, dt = {args.dt:g} s "
           f"(`rockcontact safety-factor`, trials of 1 s)\n")
     print("| case | joints A, B (dip/dir) | plunge/trend | V (m³) | Hoek–Bray FS | DDA FS | status | error | trials | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -130,9 +137,14 @@ def main() -> int:
         work = pathlib.Path(args.keep or tmp)
         every = max(1, round(0.01 / args.dt))  # about 100 records a second
         subprocess.run([scenes_exe, "--seed", str(args.seed), "--count", str(args.count), "--phi", repr(args.phi),
-                        "--kn", repr(args.kn), "--dt", repr(args.dt), "--duration", "1", "--every", str(every),
-                        "--out", str(work)], check=True)
+                        "--kn", "1e10" if args.kn == "auto" else repr(args.kn), "--dt", repr(args.dt),
+                        "--duration", "1", "--every", str(every), "--out", str(work)], check=True)
         cases = json.loads((work / "cases.json").read_text())
+        if args.kn == "auto":
+            for case in cases:
+                scene = json.loads((work / case["scene"]).read_text())
+                del scene["contact"]["kn"], scene["contact"]["kt"]
+                (work / case["scene"]).write_text(json.dumps(scene, indent=1))
         print(f"Wedge family: seed {args.seed}, {len(cases)} cases (dynamics/apps/wedge_family.hpp)\n")
         failures = []
         fs_errors = safety_factors(args, cases, work, failures)

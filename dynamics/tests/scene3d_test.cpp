@@ -200,7 +200,9 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
                "interfaces[0].friction_angle_deg", "a number in [0, 90)");
   expect_error([](json& d) { d["contact"]["law"] = "potential"; }, "contact.law",
                "expected \"penalty\"");
-  expect_error([](json& d) { d["contact"].erase("kt"); }, "contact.kt", "missing field");
+  expect_error([](json& d) { d["contact"]["kn"] = "stiff"; }, "contact.kn",
+               "a finite number > 0, or \"auto\"");
+  expect_error([](json& d) { d["contact"]["kt"] = -1; }, "contact.kt", "a finite number > 0, or \"auto\"");
   expect_error([](json& d) { d["contact"]["tensile_strength"] = -1; }, "contact.tensile_strength",
                "a finite number >= 0");
   expect_error([](json& d) { d["blocks"][0]["velocity"] = {0, 0, 0, 0, 0, 0}; },
@@ -230,6 +232,40 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
 }
 
 // The kernel's InvalidPolyhedron mapped onto the JSON path of the face or vertex it names.
+// "kn": "auto" (or none) is 10 E L of the movable block with the smallest E L, L the cube root of
+// its volume (dda3d.hpp); "kt": "auto" (or none) is kn / 10. The contract scene's one movable
+// block is the 1 m cube of "soft" (E = 5e8 Pa): kn = 10 x 5e8 x 1 = 5e9 N/m. Made of "rock"
+// (1e10 Pa) beside a movable 2 m "soft" cube (E L = 1e9), the smaller E L is the second's.
+// Fixed blocks do not count (the slab's E L is 2.5e10). The volume is a sum of exact
+// tetrahedra of a box (relative error of a few ulps), hence the 1e-12.
+BOOST_AUTO_TEST_CASE(penalties_default_to_auto) {
+  const auto parse = [](const std::function<void(json&)>& change) {
+    json document = contract_scene();
+    change(document);
+    return dyn::parse_scene3d(document, "auto.json");
+  };
+  const auto tolerance = boost::test_tools::tolerance(1e-12);
+  const dyn::Scene3d none = parse([](json& d) { d["contact"].erase("kn"), d["contact"].erase("kt"); });
+  BOOST_TEST(none.law.kn == 5.0e9, tolerance);
+  BOOST_TEST(none.law.kt == 5.0e8, tolerance);
+  BOOST_TEST((none.kn_auto && none.kt_auto));
+  const dyn::Scene3d asked = parse([](json& d) { d["contact"]["kn"] = "auto"; });
+  BOOST_TEST(asked.law.kn == 5.0e9, tolerance);
+  BOOST_TEST(asked.law.kt == 3.0e9);
+  BOOST_TEST((asked.kn_auto && !asked.kt_auto));
+  const dyn::Scene3d given = parse([](json& d) { d["contact"].erase("kt"); });
+  BOOST_TEST(given.law.kn == 2.0e10);
+  BOOST_TEST(given.law.kt == 2.0e9, tolerance);
+  const dyn::Scene3d two = parse([](json& d) {
+    d["contact"]["kn"] = "auto";
+    d["blocks"][1]["material"] = "rock";
+    json big = box_block("big", "rock", {5, 5, 0}, {7, 7, 2});
+    big["material"] = "soft";
+    d["blocks"].push_back(big);
+  });
+  BOOST_TEST(two.law.kn == 10.0 * 5.0e8 * 2.0, tolerance);
+}
+
 BOOST_AUTO_TEST_CASE(invalid_polyhedra_name_the_face_or_vertex) {
   // The top face left out: the top edge 4 -> 7 of the side face now at index 4 has no reverse.
   expect_error([](json& d) { d["blocks"][1]["faces"].erase(1); }, "blocks[1].faces[4]",

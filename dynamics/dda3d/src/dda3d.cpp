@@ -1270,6 +1270,18 @@ void Dda3d::Impl::refresh_state(std::size_t i) {
   s.rigid = b.spec.rigid;
 }
 
+double auto_normal_penalty3d(std::span<const Block3dSpec> blocks) {
+  if (blocks.empty()) throw std::invalid_argument("auto_normal_penalty3d: no blocks");
+  const bool any_movable = std::any_of(blocks.begin(), blocks.end(), [](const Block3dSpec& b) { return !b.fixed; });
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Block3dSpec& b : blocks) {
+    if (any_movable && b.fixed) continue;
+    const double size = std::cbrt(detail::central_moments3d(b.parts).volume);
+    smallest = std::min(smallest, b.material.youngs_modulus * size);
+  }
+  return auto_penalty_factor3d * smallest;
+}
+
 Dda3d::Dda3d(std::vector<Block3dSpec> blocks, ContactLaw3d law, Dda3dParams params)
     : impl_(std::make_shared<Impl>(std::move(blocks), std::move(law), params)) {}
 

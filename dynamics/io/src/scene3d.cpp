@@ -49,8 +49,12 @@ constexpr JsonField time_fields[] = {
 };
 constexpr JsonField contact_fields[] = {
     {"law", true, "\"penalty\" (the generalized penalty contact of seed 001)"},
-    {"kn", true, "the normal penalty kn in N/m per constraint, a finite number > 0"},
-    {"kt", true, "the tangential penalty kt in N/m per constraint, a finite number > 0"},
+    {"kn", false,
+     "the normal penalty kn in N/m per constraint, a finite number > 0, or \"auto\" (the default: 10 E L "
+     "of the smallest movable block)"},
+    {"kt", false,
+     "the tangential penalty kt in N/m per constraint, a finite number > 0, or \"auto\" (the default: kn / "
+     "10)"},
     {"friction_angle_deg", false, "the friction angle in degrees, a number in [0, 90)"},
     {"cohesion", false, "the cohesion in Pa, a finite number >= 0"},
     {"tensile_strength", false, "the tensile strength in Pa, a finite number >= 0"},
@@ -185,8 +189,8 @@ class Scene3dParser {
       reader_.fail_expected("contact.law", expected(contact_fields, "law"), value.at("law"));
     }
     ContactLaw3d& law = scene.law;
-    law.kn = reader_.positive(value.at("kn"), "contact.kn", expected(contact_fields, "kn"));
-    law.kt = reader_.positive(value.at("kt"), "contact.kt", expected(contact_fields, "kt"));
+    scene.kn_auto = penalty(value, "kn", law.kn);
+    scene.kt_auto = penalty(value, "kt", law.kt);
     law.friction_angle_deg = friction_angle(value, "contact", contact_fields, 0.0);
     law.cohesion = strength(value, "contact", "cohesion", contact_fields, 0.0);
     law.tensile_strength = strength(value, "contact", "tensile_strength", contact_fields, 0.0);
@@ -281,6 +285,13 @@ class Scene3dParser {
   }
 
  private:
+  // contact.<name>: a number > 0 into `out`, or "auto" or nothing (true: resolve_penalties sets it).
+  bool penalty(const json& contact, const char* name, double& out) const {
+    if (!contact.contains(name) || contact.at(name) == "auto") return true;
+    out = reader_.positive(contact.at(name), std::string("contact.") + name, expected(contact_fields, name));
+    return false;
+  }
+
   Material material(const json& value, const std::string& name) const {
     return read_material(reader_, value, json_child("materials", name));
   }
@@ -447,6 +458,8 @@ Scene3d parse_scene3d(const json& document, const std::string& source_name) {
   }
   parser.interfaces(document, scene);
   parser.output(document, scene);
+  if (scene.kn_auto) scene.law.kn = auto_normal_penalty3d(scene.blocks);
+  if (scene.kt_auto) scene.law.kt = scene.law.kn / 10.0;
   return scene;
 }
 

@@ -332,6 +332,11 @@ ordered_json run3d_summary(const Scene3d& scene, const Run3dReport& report) {
   out["time"] = report.time;
   out["dt"] = scene.params.dt;
   out["max_displacement_ratio"] = scene.params.max_displacement_ratio;
+  // The penalties the run used, and whether "auto" chose them.
+  out["kn"] = scene.law.kn;
+  out["kt"] = scene.law.kt;
+  out["kn_auto"] = scene.kn_auto;
+  out["kt_auto"] = scene.kt_auto;
   out["wall_seconds"] = report.simulation_seconds + report.output_seconds;
   out["simulation_seconds"] = report.simulation_seconds;
   out["output_seconds"] = report.output_seconds;

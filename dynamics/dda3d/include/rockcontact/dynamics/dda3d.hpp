@@ -101,6 +101,7 @@
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -144,6 +145,19 @@ struct ContactLaw3d {
   kernel::PolicyKind policy = kernel::PolicyKind::filtered;
   std::vector<Interface3d> interfaces;  // at most one per pair of groups
 };
+
+// The penalties a 3D scene gets with "kn": "auto" (the default): kn = auto_penalty_factor3d x the
+// smallest E L over the movable blocks (all blocks when none moves), L the cube root of a
+// block's volume, N/m; kt = kn / 10 (seed 001 §6's three scenes all take kt = kn / 10). E L is
+// the stiffness of the block itself against a load on a face of its size, so the contact
+// springs are ten times stiffer than the smallest block: its penalty settling stays a tenth of
+// its own elastic deformation and below 10⁻⁵ of its size under its weight at the densities and
+// moduli of rock (ρ g L / (10 E) with ρ = 2600 kg/m³, E = 10 GPa: 2.6·10⁻⁷ per metre of L). For
+// the §6.1 wedge (E = 10 GPa, 87 m³) it gives 4.4·10¹¹ N/m, for the family's wedges of 1.9 to 80
+// m³ 1.2·10¹¹ to 4.3·10¹¹ (docs/validation.md has what they give). Throws std::invalid_argument
+// for no blocks.
+inline constexpr double auto_penalty_factor3d = 10.0;
+double auto_normal_penalty3d(std::span<const Block3dSpec> blocks);
 
 // The sparse solver of the global equation: Eigen's SimplicialLDLT (a direct factorization each
 // solve) or ConjugateGradient (diagonal preconditioner, 1e-12 relative residual, started from

@@ -13,7 +13,10 @@
 //    "gravity": [gx, gy, gz] m/s²                     (optional, default [0, 0, -9.81])
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
 //                         "poisson_ratio": -1 < nu < 0.5}, ...},
-//    "contact": {"law": "penalty", "kn": N/m > 0, "kt": N/m > 0   (per constraint)
+//    "contact": {"law": "penalty",
+//                "kn": N/m > 0 | "auto"   (per constraint; optional, default "auto":
+//                                          auto_normal_penalty3d of the blocks, dda3d.hpp)
+//                "kt": N/m > 0 | "auto"   (per constraint; optional, default "auto": kn / 10)
 //                "friction_angle_deg": [0, 90)   (optional, default 0: frictionless)
 //                "cohesion": Pa >= 0             (optional, default 0)
 //                "tensile_strength": Pa >= 0     (optional, default 0)
@@ -68,6 +71,8 @@ struct Scene3d {
   std::size_t generated_first = 0;          // the blocks cut from the region:
   std::size_t generated_count = 0;          // blocks[generated_first, + generated_count)
   ContactLaw3d law;
+  bool kn_auto = false;  // law.kn is auto_normal_penalty3d's ("kn": "auto" or none)
+  bool kt_auto = false;  // law.kt is law.kn / 10 ("kt": "auto" or none)
   Dda3dParams params;  // dt, gravity, max_displacement_ratio from the scene; the rest default
   double duration = 0.0;           // s
   std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
