@@ -12,6 +12,7 @@
 
 #include "rockcontact/kernel/3d/contact_constraints.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
+#include "rockcontact/testing/hull2.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // The wedge family's generator (wedge_family.hpp), not the DDA on it (bench/wedge_family.py
@@ -246,34 +247,22 @@ BOOST_AUTO_TEST_CASE(the_slide_reference_is_the_net_force) {
 // moved top edge with the base's edge on the free face was no contact, so a sliding wedge held
 // by one corner per joint tipped off it (the family's case 1 at phi = 20 slid 19 % too far).
 BOOST_AUTO_TEST_CASE(a_sliding_wedge_keeps_both_contact_polygons) {
-  const auto area_of_hull = [](std::vector<Point3> points, const Point3& n) {
-    // Points projected on the plane of unit normal n: the area of their convex hull (Andrew's
-    // monotone chain in a basis (e1, e2) of the plane); 0 for fewer than three.
-    if (points.size() < 3) return 0.0;
+  const auto area_of_hull = [](const std::vector<Point3>& points, const Point3& n) {
+    // Points projected on the plane of unit normal n (a basis e1, e2 of it): their hull's area.
     const Point3 helper = std::abs(n.x) < 0.9 ? Point3{1, 0, 0} : Point3{0, 1, 0};
     Point3 e1 = cross(n, helper);
     const double l = std::sqrt(dot(e1, e1));
     e1 = {e1.x / l, e1.y / l, e1.z / l};
     const Point3 e2 = cross(n, e1);
-    std::vector<std::pair<double, double>> q;
-    for (const Point3& p : points) q.emplace_back(dot(p, e1), dot(p, e2));
-    std::sort(q.begin(), q.end());
-    const auto turn = [](auto o, auto a, auto b) {
-      return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
-    };
-    std::vector<std::pair<double, double>> hull(2 * q.size());
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      while (k >= 2 && turn(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
-      hull[k++] = q[i];
-    }
-    for (std::size_t i = q.size() - 1, lower = k + 1; i-- > 0;) {
-      while (k >= lower && turn(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
-      hull[k++] = q[i];
-    }
+    std::vector<rockcontact::kernel::Point2> q;
+    for (const Point3& p : points) q.push_back({dot(p, e1), dot(p, e2)});
+    const std::vector<rockcontact::kernel::Point2> hull = rockcontact::testing::convex_hull2(std::move(q));
     double twice = 0.0;
-    for (std::size_t i = 0; i + 1 < k; ++i) twice += hull[i].first * hull[i + 1].second - hull[i + 1].first * hull[i].second;
-    return 0.5 * std::abs(twice);
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+      const auto &a = hull[i], &b = hull[(i + 1) % hull.size()];
+      twice += a.x * b.y - b.x * a.y;
+    }
+    return 0.5 * twice;
   };
   const auto triangle_area = [](const Point3& a, const Point3& b, const Point3& c) {
     const Point3 m = cross(minus(b, a), minus(c, a));

@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE kernel_potential
 #include <boost/test/unit_test.hpp>
 
+#include "rockcontact/testing/hull2.hpp"
 #include "rockcontact/testing/seed.hpp"
 
 // The shortest-exit potential (seed 000 eq. 12-14), its demarcation points (§3.2.3) and the
@@ -274,26 +275,9 @@ BOOST_AUTO_TEST_CASE(exact_demarcation_matches_dense_sampling) {
 // (step 1/16) of random lattice polygons pass through such points often.
 namespace {
 
-std::vector<Point2> lattice_hull(std::vector<Point2> points) {  // strict, CCW; exact on this grid
-  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
-    return a.x < b.x || (a.x == b.x && a.y < b.y);
-  });
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  const auto turn = [](const Point2& o, const Point2& a, const Point2& b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-  };
-  std::vector<Point2> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k > 0 ? k - 1 : 0);
-  return hull;
+// Strict and counter-clockwise; exact on this grid (convex_hull2's orientation test is).
+std::vector<Point2> lattice_hull(std::vector<Point2> points) {
+  return rockcontact::testing::convex_hull2(std::move(points));
 }
 
 }  // namespace
