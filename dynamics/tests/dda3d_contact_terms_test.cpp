@@ -459,10 +459,10 @@ struct Single {
     law.kt = 1.0e8;
     law.friction_angle_deg = 30.0;
   }
-  d::ContactUpdate3d move(const Vector3d& translation, double tangential_damping = 0.0) const {
+  d::ContactUpdate3d move(const Vector3d& translation) const {
     VectorXd d_j = VectorXd::Zero(d::rigid_dof3d);
     d_j.head(3) = translation;
-    return d::evaluate_contact(kin, state, law, VectorXd(0), d_j, tangential_damping);
+    return d::evaluate_contact(kin, state, law, VectorXd(0), d_j);
   }
 };
 
@@ -511,25 +511,6 @@ BOOST_AUTO_TEST_CASE(open_and_closed) {
   closed.law.tensile_strength = 0.5e5 / 0.01;
   BOOST_TEST(closed.move({0, 0, 2e-4}).mode == d::ContactMode::open);
   BOOST_TEST(closed.move({0, 0, 0.5e-4}).mode != d::ContactMode::open);  // still penetrating
-}
-
-// A locked contact's tangential dashpot (c_t / h as a stiffness on the step's motion) counts with
-// its spring against the Coulomb limit. Penetrating 1 mm (fn = kn 1e-3 = 1e6 N, limit tan 30°
-// 1e6 = 577 350 N) and moved 4 mm along x from an unstretched spring, the spring takes
-// kt 4e-3 = 4e5 N: locked without a dashpot; a dashpot of 1e8 N/m adds 4e5 N, 8e5 N in all, past
-// the limit: sliding, the spring held at the cap along x. A sliding contact has no dashpot.
-BOOST_AUTO_TEST_CASE(a_dashpot_does_not_hold_past_friction) {
-  Single c(0.0);
-  c.state.mode = d::ContactMode::locked;
-  const Vector3d move(4e-3, 0, -1e-3);
-  BOOST_TEST(c.move(move).mode == d::ContactMode::locked);
-  BOOST_TEST(c.move(move, 1e7).mode == d::ContactMode::locked);  // 4e5 + 4e4 N: below the limit
-  const d::ContactUpdate3d u = c.move(move, 1e8);
-  BOOST_TEST(u.mode == d::ContactMode::sliding);
-  const double limit = std::tan(30.0 * std::numbers::pi / 180.0) * 1e6;
-  BOOST_TEST(close(u.tangential_force, Vector3d(-limit, 0, 0)));
-  c.state.mode = d::ContactMode::sliding;
-  BOOST_TEST(c.move(Vector3d(1e-3, 0, -1e-3), 1e8).mode == d::ContactMode::locked);  // 1e5 N, no dashpot
 }
 
 // A constraint born inside an overlap (offset = its gap at birth, -1 mm): its normal spring acts

@@ -75,14 +75,12 @@ double friction_limit(const ContactLaw3d& law, double normal_force, double area)
   return tan_phi * std::max(normal_force, 0.0) + law.cohesion * area;
 }
 
-// Closed -> locked or sliding: the elastoplastic return mapping of the trial stretch, the
-// friction force being the spring's and `viscous`, the force of a locked contact's tangential
-// dashpot over the step (evaluate_contact).
-void judge_tangential(const ContactLaw3d& law, double area, const Vector3d& trial, const Vector3d& viscous,
+// Closed -> locked or sliding: the elastoplastic return mapping of the trial stretch.
+void judge_tangential(const ContactLaw3d& law, double area, const Vector3d& trial,
                       ContactUpdate3d& out) {
   const double limit = friction_limit(law, out.normal_force, area);
   const double length = trial.norm();
-  if ((law.kt * trial + viscous).norm() <= limit) {
+  if (law.kt * length <= limit) {
     out.mode = ContactMode::locked;
     out.shear = trial;
   } else {
@@ -175,7 +173,7 @@ double dashpot_work(const ContactKinematics3d& kin, const ContactState3d& state,
 ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactState3d& state,
                                  const ContactLaw3d& law,
                                  const Eigen::Ref<const Eigen::VectorXd>& d_i,
-                                 const Eigen::Ref<const Eigen::VectorXd>& d_j, double tangential_damping) {
+                                 const Eigen::Ref<const Eigen::VectorXd>& d_j) {
   assert(d_i.size() == kin.t_i.cols() && d_j.size() == kin.t_j.cols());
   const Vector3d& n = kin.normal;
   const Vector3d relative = relative_motion(kin, d_i, d_j);
@@ -197,9 +195,7 @@ ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactSt
     return out;
   }
   const Vector3d trial = tangential(state.shear + relative, n);
-  const Vector3d viscous =
-      state.mode == ContactMode::locked ? Vector3d(tangential_damping * tangential(relative, n)) : Vector3d::Zero();
-  judge_tangential(law, kin.area, trial, viscous, out);
+  judge_tangential(law, kin.area, trial, out);
   out.sliding_direction = unit_or(trial, state.sliding_direction);
   return out;
 }

@@ -168,15 +168,11 @@ struct ContactUpdate3d {
 
 // The mode decision of Table 2 and the forces, for the increments d_i (n_i) and d_j (n_j) of the
 // solve that used `state`. An open -> closed contact is locked with the stretch P r_acc and no
-// tangential force yet: its spring enters with the next iteration. `tangential_damping` (N/m,
-// c_t / h of add_dashpots) is a locked contact's tangential dashpot: its force over the step
-// counts with the spring's against the Coulomb limit, so a dashpot cannot hold a block the
-// friction lets slide (a wedge crept on its dashpots at 10⁻⁴ m/s in strength-reduction trials
-// past its factor of safety and was counted stable).
+// tangential force yet: its spring enters with the next iteration.
 ContactUpdate3d evaluate_contact(const ContactKinematics3d& kin, const ContactState3d& state,
                                  const ContactLaw3d& law,
                                  const Eigen::Ref<const Eigen::VectorXd>& d_i,
-                                 const Eigen::Ref<const Eigen::VectorXd>& d_j, double tangential_damping = 0.0);
+                                 const Eigen::Ref<const Eigen::VectorXd>& d_j);
 
 // The energy of the springs of a closed contact at gap `gap` with tangential stretch `shear`,
 // ½ kn (gap - offset)² + ½ kt |shear|², J; 0 for an open one.

@@ -1118,7 +1118,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       Constraint& k = list[static_cast<std::size_t>(c)];
       const auto di = increments(blocks[k.a]);
       const auto dj = increments(blocks[k.b]);
-      k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj, k.dashpot_tangential / h);
+      k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
       const bool was_closed = k.state.mode != detail::ContactMode::open;
       const bool is_closed = k.update.mode != detail::ContactMode::open;
       // §4.3: the iteration converges when no contact changes between open and closed and no
