@@ -285,7 +285,8 @@ class Scene3dParser {
   }
 
  private:
-  // contact.<name>: a number > 0 into `out`, or "auto" or nothing (true: resolve_penalties sets it).
+  // contact.<name>: a number > 0 into `out`, or "auto" or nothing (true: parse_scene3d sets it once
+  // the blocks are read).
   bool penalty(const json& contact, const char* name, double& out) const {
     if (!contact.contains(name) || contact.at(name) == "auto") return true;
     out = reader_.positive(contact.at(name), std::string("contact.") + name, expected(contact_fields, name));
