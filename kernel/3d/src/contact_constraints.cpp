@@ -316,6 +316,11 @@ Sign edge_side_within(const Topology& t, std::uint32_t f, const Point3& p, const
   if (s != Sign::negative || !(tie > 0.0)) return s;
   const auto& loop = t.face(f);
   const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+  {  // In double first: beyond 2 tie by the estimate is beyond whatever its rounding.
+    const Vec<double> m = cross(sub<double>(p, q), cross(sub<double>(f0, f1), sub<double>(f0, f2)));
+    const double along = dot(m, sub<double>(p, v)), bound = 4.0 * tie * tie * dot(m, m);
+    if (std::isfinite(bound) && along * along > bound) return s;
+  }
   const Sign beyond = decide<Policy>([&](auto as) {
     using T = typename decltype(as)::type;
     const Vec<T> m = cross(sub<T>(p, q), cross(sub<T>(f0, f1), sub<T>(f0, f2)));
@@ -419,7 +424,7 @@ std::optional<Located> closest_feature(const Point3& v, const Topology& y, const
     }
     if (!interior) continue;
     if (y.internal[f] || (!touching && !within<Policy>(face_height(y, f, v), tolerance))) return std::nullopt;
-    return Located{Feature::Kind::face, f, false, touching, touching || within<Policy>(face_height(y, f, v), ties.rounding)};
+    return Located{Feature::Kind::face, f, false, touching, touching};  // `near` serves step 3 only
   }
   return std::nullopt;  // only under Float, whose rounded signs may contradict each other
 }
@@ -443,8 +448,11 @@ std::optional<Located> locate_vertex(const Point3& v, const Topology& y, double 
     bool near = false;
     for (std::uint32_t f = 0; f < heights.size(); ++f) {
       const auto height = face_height(y, f, v);
+      // In double first: deeper than 2 tie by the estimate is deeper whatever its rounding.
+      const double n = height.numerator(As<double>{}), dd = height.denominator_squared(As<double>{});
+      if (std::isfinite(dd) && n * n > 4.0 * tie * tie * dd) continue;
       const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
-      if (tie > 0.0 && within<Policy>(depth, tie)) heights[f] = Sign::zero, near = true;
+      if (within<Policy>(depth, tie)) heights[f] = Sign::zero, near = true;
     }
     if (near) {
       if (auto at = closest_feature<Policy>(v, y, heights, true, tolerance, ties)) return at;
@@ -594,9 +602,7 @@ void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topolog
   double best_distance = 0.0;
   for (const Plane& plane : d.candidates) {
     const double here = estimate(plane);
-    const bool wins = !best || (tie > 0.0 ? here > best_distance + tie
-                                          : compare_distances<Policy>(distance(plane), distance(*best)) == Sign::positive);
-    if (wins) best = &plane, best_distance = here;
+    if (!best || here > best_distance + tie) best = &plane, best_distance = here;
   }
   d.line_normal = best == nullptr;
   if (best) {
@@ -805,18 +811,39 @@ class FlushFacetSides {
   const Point3 &g0_, &g1_, &g2_;
 };
 
-template <NumberPolicy Policy>
-void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::vector<Decision>& out) {
-  // The pair's extent, for its Ties.
-  std::array<double, 3> lo{cp.p(0).x, cp.p(0).y, cp.p(0).z}, hi = lo;
-  for (const Topology* t : {&cp, &tp}) {
-    for (const Point3& p : t->poly->vertices()) {
-      const std::array<double, 3> c{p.x, p.y, p.z};
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+// The axis-aligned box of some parts' vertices (exact: comparisons of the input doubles).
+struct Box3 {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+
+  void add(std::span<const ConvexPolyhedron> parts) {
+    for (const ConvexPolyhedron& part : parts) {
+      for (const Point3& p : part.vertices()) {
+        const double c[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+      }
     }
   }
-  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const Ties ties{same_contact_tolerance * extent, coincidence_tolerance * extent};
+  double size() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
+  // Do the boxes' interiors meet? Two convex parts can overlap only where they do.
+  bool interiors_meet(const Box3& o) const {
+    for (int k = 0; k < 3; ++k) {
+      if (!(lo[k] < o.hi[k] && o.lo[k] < hi[k])) return false;
+    }
+    return true;
+  }
+};
+
+Box3 box_of(std::span<const ConvexPolyhedron> parts) {
+  Box3 box;
+  box.add(parts);
+  return box;
+}
+
+template <NumberPolicy Policy>
+void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::vector<Decision>& out) {
+  Box3 pair = box_of({cp.poly, 1});  // the pair's extent, for its Ties
+  pair.add({tp.poly, 1});
+  const Ties ties{same_contact_tolerance * pair.size(), coincidence_tolerance * pair.size()};
   std::set<std::pair<std::uint32_t, std::uint32_t>> vertex_pairs;  // (cp vertex, tp vertex)
   for (std::uint32_t v = 0; v < cp.poly->size(); ++v) {
     if (auto d = vertex_decision<Policy>(cp, v, true, tp, tolerance, ties)) {
@@ -1171,33 +1198,6 @@ void fit_to_penetration(const PartPair& pair, const Penetration& depth, std::vec
   if (std::none_of(closed.begin(), closed.end(), [](char k) { return k != 0; })) add_support_corners(pair, slab, found);
 }
 
-// The axis-aligned box of some parts' vertices (exact: comparisons of the input doubles).
-struct Box3 {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-
-  void add(std::span<const ConvexPolyhedron> parts) {
-    for (const ConvexPolyhedron& part : parts) {
-      for (const Point3& p : part.vertices()) {
-        const double c[3] = {p.x, p.y, p.z};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
-      }
-    }
-  }
-  double size() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
-  // Do the boxes' interiors meet? Two convex parts can overlap only where they do.
-  bool interiors_meet(const Box3& o) const {
-    for (int k = 0; k < 3; ++k) {
-      if (!(lo[k] < o.hi[k] && o.lo[k] < hi[k])) return false;
-    }
-    return true;
-  }
-};
-
-Box3 box_of(std::span<const ConvexPolyhedron> parts) {
-  Box3 box;
-  box.add(parts);
-  return box;
-}
 
 template <NumberPolicy Policy>
 std::vector<Topology> topologies(std::span<const ConvexPolyhedron> parts) {

@@ -16,22 +16,26 @@
 //   1. Each vertex v of X is located against Y with exact predicates:
 //      * v strictly inside Y (below every face plane): a penetrating vertex; its face is the
 //        shortest exit (§2.2.1, eq. 4), the face of Y whose plane v is least deep below, its
-//        depth h_f / |n_f| compared exactly (ties: the lowest face index). Vertex-face.
+//        depth h_f / |n_f| compared exactly (ties: the lowest face index). Vertex-face. A
+//        vertex inside by no more than S_tie (below) under some faces is on the boundary but for
+//        rounding: it is located as touching, by the tests below with those faces' heights 0.
 //      * otherwise the closest point p of Y to v (p = v when v is on Y's boundary) lies in the
 //        relative interior of exactly one feature of Y, found by exact Voronoi-region tests
 //        (vertex w: (v - w).(u - w) <= 0 for every neighbour u of w; edge [a, b]:
-//        0 < (v - a).(b - a) < |b - a|^2 and v beyond or on the edge's line in both adjacent
-//        faces; face f: v on or above f's plane and strictly inside all of f's edge lines). v is
-//        a contact when |v - p| <= tolerance, compared exactly as a square (for tolerance 0:
-//        exactly when v lies on Y's boundary). The feature gives the type: face -> vertex-face
+//        0 < (v - a).(b - a) < |b - a|^2 and v beyond, on or within S_tie inside the edge's
+//        line in both adjacent faces; face f: v on or above f's plane and strictly inside all
+//        of f's edge lines). v is a contact when |v - p| <= tolerance, compared exactly as a
+//        square (for tolerance 0: exactly when v lies on Y's boundary). The feature gives the type: face -> vertex-face
 //        (normal: the face's), edge -> vertex-edge (p = the projection of v on the edge, §2.1
 //        method (a)), vertex -> vertex-vertex (p = the vertex, §2.1).
 //   2. Each pair of non-parallel edges e = [a, b] of X and g = [c, d] of Y whose closest points
-//      p_e, p_g (§2.1, eq. 2-3) are interior to both edges (0 < s, t < 1, exact) is a crossing
-//      edge-edge contact when the plane through e with normal n = (b - a) x (d - c) supports X
-//      (both faces of X at e on one side), the parallel plane through g supports Y on the other
-//      side, the gap between the planes is <= tolerance, and, for a negative gap, e meets the
-//      interior of Y and g the interior of X (exact): the edges cut into the other block, not
+//      p_e, p_g (§2.1, eq. 2-3) are interior to both edges (0 < s, t < 1, exact), at an angle
+//      above cone_flush_sine (nearer to parallel, the crossing's place is the rounding's), is a
+//      crossing edge-edge contact when the plane through e with normal n = (b - a) x (d - c)
+//      supports X (both faces of X at e on one side, a face within cone_flush_sine of the plane
+//      counting as in it), the parallel plane through g supports Y on the other side, the gap
+//      between the planes is <= tolerance, and, for a negative gap, e meets the interior of Y
+//      and g the interior of X (exact): the edges cut into the other block, not
 //      only cross in projection (never for a touching pair, whose interiors are disjoint).
 //      Asking p_e in Y and p_g in X instead would miss crossings where a block's wedge leans
 //      sideways: the edges interpenetrate next to the closest points, not at them. The normal
@@ -42,10 +46,12 @@
 //      edge of X at v and the edge g (or an edge of Y at w), non-parallel. A candidate passes
 //      the no-overlap check when, oriented from X to Y, the edges of X leaving v point to its
 //      non-positive side and Y's tangent cone at p (its edges leaving w; or +-g and the edges
-//      of g's two faces) points to its non-negative side (exact signs of triple products). Its
-//      separation distance (eq. 4) is (p - v) . n / |n|; the candidate with the largest wins,
-//      compared exactly (N1 / sqrt(D1) against N2 / sqrt(D2) by signs and squares). Ties, which
-//      are the rule at an exact touch (every candidate through p gives 0), go to the first in
+//      of g's two faces) points to its non-negative side (exact signs of triple products; for
+//      a vertex touching Y or within S_round of it, a generator within cone_flush_sine of the
+//      plane counts as in it). Its separation distance (eq. 4) is (p - v) . n / |n|; the
+//      candidate with the largest wins by more than S_tie (estimated in double, whose error is
+//      far below S_tie). Ties, which are the rule at an exact touch (every candidate through p
+//      gives 0, or a few ulps where the faces are coplanar but for rounding), go to the first in
 //      the order: faces of Y, faces of X, edge pairs, each by increasing index; so a vertex on
 //      an edge of a face it rests on takes that face's normal. If no candidate passes (a
 //      separated pair within tolerance whose tangent cones overlap) the normal is the unit of
@@ -117,9 +123,15 @@
 // (the vertex and face of a vertex-face, the two edges of an edge-edge); `plane` and
 // `candidates` let the open-close iteration redo the shortest exit with updated points (§4.3).
 //
+// Coincidence: blocks moved along the faces they rest on (a wedge sliding down its joints), or
+// cut from one region, meet only to the rounding of their coordinates, which exact decisions
+// see. S_tie = same_contact_tolerance and S_round = coincidence_tolerance times the pair's
+// extent, and cone_flush_sine (tolerances.hpp), are where such decisions take coincidence for
+// what it was meant to be; gaps stay exact.
+//
 // Robustness: every decision above (the location of a vertex, interior parameters, supporting
-// sides, the tolerance, the no-overlap check, the shortest-exit comparison) is the exact sign of
-// a polynomial of input coordinates and the tolerance, under Filtered, Exact and Checked
+// sides, the tolerance, the no-overlap check) is the exact sign of a polynomial of input
+// coordinates and the tolerances, under Filtered, Exact and Checked
 // (triple products through predicates.hpp's static filter, the other formulas, of degree 2 to
 // 8, through interval arithmetic; then CGAL::Mpzf); a touch reports gap exactly 0 and equal
 // contact points. Constructions follow the decisions: under Float and Filtered in double after
