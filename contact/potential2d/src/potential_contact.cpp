@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::contact {
@@ -38,13 +37,9 @@ void evaluate_checked(const ConvexPolygon& cp, const ConvexPolygon& tp,
   out.area = 0.0;
   out.force = {};
   out.point.reset();
-  {
-    // The clip decides the verdict too (intersection_polygon.hpp), equal to classify_overlap's
-    // under Filtered and Exact, so the pair is classified once. It evaluates predicates only:
-    // one rounding-mode scope for all of them.
-    const kernel::PredicateScope scope;
-    out.status = kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
-  }
+  // The clip decides the verdict too (intersection_polygon.hpp), equal to classify_overlap's
+  // under Filtered and Exact, so the pair is classified once.
+  out.status = kernel::compute_intersection_polygon<Policy>(cp, tp, out.ip_features, workspace.clip);
   if (!out.ip_features.empty()) {
     const kernel::PotentialParams potential{params.kn, params.H, params.demarcation,
                                             params.small_edge_fraction * params.H};

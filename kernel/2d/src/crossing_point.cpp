@@ -10,7 +10,7 @@
 namespace rockcontact::kernel {
 namespace detail {
 
-// A construction, evaluated in round to nearest (never inside a PredicateScope): unit roundoff
+// A construction, evaluated in round to nearest (the library's mode outside an interval stage): unit roundoff
 // u = 2^-53 and the smallest subnormal.
 inline constexpr double unit_roundoff = 0x1p-53;
 inline constexpr double smallest_subnormal = 0x1p-1074;

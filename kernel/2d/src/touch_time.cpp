@@ -179,7 +179,7 @@ CGAL::Uncertain<CGAL::Sign> surd_sign_interval(const Surd<Interval>& v) {
 // The decisions of one motion: each a formula F, a callable F(const TouchPolynomials<T>&) ->
 // Surd<T>, decided in intervals first (when filtering) and exactly only if uncertain. The
 // decider holds the upward rounding the interval stage needs for its whole lifetime: one
-// switch for all of a call's decisions (none inside a PredicateScope that already switched).
+// switch for all of a call's decisions, restored when the decider ends.
 // Mpzf arithmetic is integer arithmetic and does not depend on the rounding mode.
 class TouchDecider {
  public:
@@ -204,7 +204,7 @@ class TouchDecider {
   }
 
  private:
-  UpwardRounding upward_;  // first member: constructed before enclosure_ is evaluated
+  CGAL::Protect_FPU_rounding<true> upward_{CGAL_FE_UPWARD};  // first member: constructed before enclosure_ is evaluated
   const NodeEdgeMotion& motion_;
   bool filter_;
   TouchPolynomials<Interval> enclosure_;

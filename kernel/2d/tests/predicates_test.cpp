@@ -28,7 +28,6 @@
 
 #include "rockcontact/kernel/2d/predicates.hpp"
 #include "rockcontact/kernel/core/policy_disagreement.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 
 namespace rockcontact::kernel {
@@ -49,8 +48,9 @@ constexpr double u = rockcontact::testing::unit_roundoff;
 // The filters' per-operation error bound, valid under every rounding mode (predicates.hpp).
 constexpr double eps = 2 * u;
 
-// The rounding modes a double filter may run under: round to nearest (the default) and upward
-// (inside a PredicateScope once an interval stage switched it).
+// The rounding modes the filters' bounds are re-derived under: round to nearest, the mode the
+// library runs them in, and upward, since the bounds take a whole ulp per operation and so hold
+// in any mode as long as nothing overflows (predicates.hpp).
 constexpr std::array<int, 2> rounding_modes{FE_TONEAREST, FE_UPWARD};
 const char* mode_name(int mode) { return mode == FE_UPWARD ? "upward" : "to nearest"; }
 
@@ -61,8 +61,7 @@ bool rounding_upward() {
   return 1.0 + tiny > 1.0;
 }
 
-// Calls f() with the FPU rounding in `mode`; never inside a PredicateScope, whose switch this
-// would undo. f must be a call the compiler cannot evaluate
+// Calls f() with the FPU rounding in `mode`. f must be a call the compiler cannot evaluate
 // before the switch: the helpers below are noinline and read their inputs from memory.
 template <class F>
 auto under_rounding(int mode, F&& f) {
@@ -439,9 +438,7 @@ BOOST_AUTO_TEST_CASE(crossing_side_filter_bound_rederived) {
 // Each filter runs under round to nearest and upward rounding:
 //   cross, static:      |det| > (3 + 16 eps) eps (|left| + |right|) + 2^-1070   (predicates.hpp)
 //   crossing_side, semi-static:  |V| > 11 eps T                                (predicates.hpp)
-//   and the whole staged predicates (filter, interval, exact), each call inside a
-//   PredicateScope that an earlier fallback switched to upward rounding, as a pair's later
-//   predicates run.
+//   and the whole staged predicates (filter, interval, exact).
 [[gnu::noinline]] std::optional<Sign> static_filter(const Point2& p, const Point2& q, const Point2& r) {
   return rkd::cross_sign_static_filter(p, q, p, r);
 }
@@ -461,7 +458,7 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     }
   };
   std::array<Tally, 2> cross_static, side_semi_static;
-  Tally cross_whole, side_whole, cross_after_fallback, side_after_fallback;
+  Tally cross_whole, side_whole;
   std::vector<int> steps;
   for (int k = 1; k <= 48; ++k) steps.push_back(k);
   for (int j = 6; j <= 30; ++j) steps.push_back(1 << j);
@@ -469,13 +466,6 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
     for (int i = 0; i < ulps && ulps <= 48; ++i) x = std::nextafter(x, HUGE_VAL);
     if (ulps > 48) x += ulps * (std::nextafter(x, HUGE_VAL) - x);
     return x;
-  };
-  // A call after a fallback in the same scope: its filter runs under upward rounding.
-  const auto after_a_fallback = [](auto&& predicate) {
-    const rk::PredicateScope scope;
-    BOOST_TEST_REQUIRE((rk::orientation<rk::Filtered>({0.375, 0.125}, {0.875, 0.375}, {1.625, 0.75}) == Sign::zero));
-    BOOST_TEST_REQUIRE(rounding_upward());
-    return predicate();
   };
   for (int trial = 0; trial < 300; ++trial) {
     const Point2 offset = trial % 2 == 0 ? Point2{0, 0} : Point2{1e6, -1e6};
@@ -493,8 +483,6 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
         cross_static[m].add(certified.has_value(), certified == expected, ratio);
       }
       cross_whole.add(true, rk::orientation<rk::Filtered>(p, q, r) == expected, ratio);
-      cross_after_fallback.add(
-          true, after_a_fallback([&] { return rk::orientation<rk::Filtered>(p, q, r); }) == expected, ratio);
     }
     // Lines a and b through a random point X, c through X's rounding, then c.q moved.
     const Point2 x = add(g.point(1.0), offset);
@@ -517,9 +505,6 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
         side_semi_static[m].add(certified.has_value(), certified == expected, ratio);
       }
       side_whole.add(true, rkd::crossing_side_value_sign_staged(s.a, s.b, s.c) == expected, ratio);
-      side_after_fallback.add(
-          true, after_a_fallback([&] { return rkd::crossing_side_value_sign_staged(s.a, s.b, s.c); }) == expected,
-          ratio);
     }
   }
   const auto report = [](const std::string& name, const Tally& t, int min_near) {
@@ -538,8 +523,6 @@ BOOST_AUTO_TEST_CASE(filters_never_certify_a_wrong_sign_near_their_bounds) {
   }
   report("cross_sign staged", cross_whole, 100);
   report("crossing_side staged", side_whole, 100);
-  report("cross_sign staged, upward after a fallback", cross_after_fallback, 100);
-  report("crossing_side staged, upward after a fallback", side_after_fallback, 100);
 }
 
 BOOST_AUTO_TEST_CASE(crossing_side_matches_exact_reference) {
@@ -709,37 +692,36 @@ BOOST_AUTO_TEST_CASE(counters_count_calls_and_fallbacks) {
 #endif
 }
 
-// The rounding mode around the interval stage. Outside a PredicateScope a fallback restores
-// round to nearest at once; inside one, the first fallback leaves the FPU rounding upward until
-// the outermost scope ends, also when the scope ends by an exception. The collinear dyadic
-// points need the interval stage (see counters_count_calls_and_fallbacks).
-BOOST_AUTO_TEST_CASE(predicate_scope_switches_once_and_restores) {
+// The rounding mode around the interval stage: a fallback switches to upward rounding for its
+// own evaluation and restores round to nearest at once, so the next predicate's filter, and
+// any construction after it, run in the mode the compiler assumed. The collinear dyadic points
+// need the interval stage (see counters_count_calls_and_fallbacks).
+BOOST_AUTO_TEST_CASE(a_fallback_restores_round_to_nearest) {
   const Point2 da{0.375, 0.125}, db{0.875, 0.375}, dc{1.625, 0.75};
   BOOST_TEST_REQUIRE(!rounding_upward());
   BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
   BOOST_TEST(!rounding_upward());
-  {
-    const rk::PredicateScope outer;
-    BOOST_TEST((rk::orientation<rk::Filtered>({0, 0}, {1, 0}, {0, 1}) == Sign::positive));
-    BOOST_TEST(!rounding_upward());  // the filter answered: no switch
-    {
-      const rk::PredicateScope inner;
-      BOOST_TEST((rk::orientation<rk::Filtered>(da, db, dc) == Sign::zero));
-      BOOST_TEST(rounding_upward());
-    }
-    BOOST_TEST(rounding_upward());  // the outer scope is still open
-    // Filters and later fallbacks under upward rounding still answer exactly.
-    BOOST_TEST((rk::orientation<rk::Filtered>({0.1, 0.2}, {0.7, -0.3}, {0.4, 0.9}) == Sign::positive));
-    BOOST_TEST((rk::orientation<rk::Filtered>({0.0, 0.0}, {0.1, 0.7}, {0.2, 1.4}) == Sign::zero));
-  }
-  BOOST_TEST(!rounding_upward());
-  try {
-    const rk::PredicateScope scope;
-    static_cast<void>(rk::orientation<rk::Filtered>(da, db, dc));
-    throw std::runtime_error("leave the scope");
-  } catch (const std::runtime_error&) {
-  }
-  BOOST_TEST(!rounding_upward());
+}
+
+// Coordinates whose products overflow: the fuzzer's input (2^-975 to 2^911 in one polygon pair,
+// robustness_tests/fuzz/regressions) on which the clang build's semi-static filter of
+// crossing_side, run under the upward rounding an earlier fallback in the pair had left on,
+// certified the wrong sign: its cross products overflowed to -DBL_MAX, not to infinity, and the
+// optimiser had rewritten |x| |y| as |x y|, so the magnitude saturated too and passed the
+// finiteness check. In round to nearest the overflow is infinite and the filter defers to the
+// interval stage; after a fallback every policy but Float must give the exact sign.
+BOOST_AUTO_TEST_CASE(crossing_side_with_overflowing_products_is_exact) {
+  const Line a{{0x1.4860304328486p-215, -0x1.c3cbfd257e9bep-152}, {0x1.fd2a61eec58ffp+508, 0x1.fef8f5bc0c5edp-356}};
+  const Line b{{0x1.43f3f697ea694p-975, 0x1.6c432a6f0a207p+911}, {-0x1.fd2968f5a87b2p-964, -0x1.fba72fcef415bp-1}};
+  const Line c{{0x1.000bfef9ba2fp+98, 0x1.221b8bf003a1dp-206}, {0x1.7b125d3da58dp-42, 0x1.f00006020035cp-724}};
+  const Sign expected = exact_crossing_side(a, b, c);
+  BOOST_TEST_REQUIRE(expected != Sign::zero);
+  BOOST_TEST(!semi_static_filter({a, b, c}).has_value());
+  // After a fallback, as in the fuzzer's pair: the filter runs in round to nearest again.
+  BOOST_TEST((rk::orientation<rk::Filtered>({0.375, 0.125}, {0.875, 0.375}, {1.625, 0.75}) == Sign::zero));
+  BOOST_TEST((rk::crossing_side<rk::Filtered>(a, b, c) == expected));
+  BOOST_TEST((rk::crossing_side<rk::Exact>(a, b, c) == expected));
+  BOOST_TEST((rk::crossing_side<rk::Checked>(a, b, c) == expected));
 }
 
 // Checked: the staged and the exact sign agree on every input family (no throw), and a

@@ -706,7 +706,7 @@ BOOST_AUTO_TEST_CASE(filtered_agrees_with_exact_on_degenerate_motions) {
 }
 
 // The rounded s and λ do not depend on the caller's rounding mode (touch_time.hpp): the same
-// bits under upward rounding, as inside a PredicateScope that an earlier fallback switched.
+// bits under upward rounding as under round to nearest.
 BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_rounding_mode) {
   std::mt19937_64 rng(seed_for("results_do_not_depend_on_the_rounding_mode", 5));
   for (int i = 0; i < 300; ++i) {

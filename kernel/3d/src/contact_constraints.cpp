@@ -1,6 +1,5 @@
 // Contact constraints of two polyhedral blocks (contact_constraints.hpp has the method). The
-// work of a part pair runs in two phases, as the PredicateScope contract asks: decide (exact
-// signs only: which features touch, which plane wins) into Decision records, then construct
+// work of a part pair runs in two phases: decide (exact signs only: which features touch, which plane wins) into Decision records, then construct
 // the points, normals and gaps from them in the policy's construction number type.
 
 #include "rockcontact/kernel/3d/contact_constraints.hpp"
@@ -22,7 +21,6 @@
 #include "rockcontact/kernel/3d/tolerances.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
 #include "rockcontact/kernel/core/detail/staged_sign.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -1217,15 +1215,12 @@ std::vector<ContactConstraint> contact_constraints(std::span<const ConvexPolyhed
                                 std::to_string(tolerance));
   }
   std::vector<PartPair> pairs;
-  {
-    const PredicateScope scope;
-    const std::vector<Topology> cp = topologies<Policy>(cp_parts), tp = topologies<Policy>(tp_parts);
-    for (const Topology& a : cp) {
-      for (const Topology& b : tp) {
-        PartPair pair{a.poly, b.poly, a.part, b.part, {}};
-        decide_pair<Policy>(a, b, tolerance, pair.decisions);
-        pairs.push_back(std::move(pair));
-      }
+  const std::vector<Topology> cp = topologies<Policy>(cp_parts), tp = topologies<Policy>(tp_parts);
+  for (const Topology& a : cp) {
+    for (const Topology& b : tp) {
+      PartPair pair{a.poly, b.poly, a.part, b.part, {}};
+      decide_pair<Policy>(a, b, tolerance, pair.decisions);
+      pairs.push_back(std::move(pair));
     }
   }
   std::vector<ContactConstraint> out;

@@ -10,7 +10,6 @@
 #include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -167,28 +166,18 @@ Point3 construct_crossing(const Corner& c, int k, const Point3& origin) {
 
 template <NumberPolicy Policy>
 std::optional<ContactSet> contact_set(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  std::optional<Plane> plane;
-  std::optional<std::vector<Point3>> fa, fb;
-  {
-    PredicateScope scope;
-    if (classify_overlap<Policy>(a, b) != Overlap::touch) return std::nullopt;
-    plane = zero_gap_plane<Policy>(a, b);
-    if (!plane) return std::nullopt;
-    fa = feature<Policy>(a, *plane);
-    fb = feature<Policy>(b, *plane);
-    if (!fa || !fb) return std::nullopt;
-  }
+  if (classify_overlap<Policy>(a, b) != Overlap::touch) return std::nullopt;
+  const std::optional<Plane> plane = zero_gap_plane<Policy>(a, b);
+  if (!plane) return std::nullopt;
+  const std::optional<std::vector<Point3>> fa = feature<Policy>(a, *plane), fb = feature<Policy>(b, *plane);
+  if (!fa || !fb) return std::nullopt;
   const std::array<int, 3> order = axes_by_magnitude(*plane);
-  std::vector<Corner> corners;
   int axis = order[0];
-  {
-    PredicateScope scope;
-    for (int k : order) {
-      axis = k;
-      if (triple_sign<Policy>(plane->p0, plane->p1, plane->q0, plane->q1, zero_point, axes[k]) != Sign::zero) break;
-    }
-    corners = PlanarIntersection<Policy>{axis}.corners(*fa, *fb);
+  for (int k : order) {
+    axis = k;
+    if (triple_sign<Policy>(plane->p0, plane->p1, plane->q0, plane->q1, zero_point, axes[k]) != Sign::zero) break;
   }
+  const std::vector<Corner> corners = PlanarIntersection<Policy>{axis}.corners(*fa, *fb);
   if (corners.empty()) return std::nullopt;  // Float only: a touching pair's features meet
   ContactSet out{corners.size() >= 3 ? 2 : static_cast<int>(corners.size()) - 1, {}};
   for (const Corner& c : corners) {

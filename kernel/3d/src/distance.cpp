@@ -5,7 +5,6 @@
 #include "local_vector.hpp"
 #include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -111,12 +110,7 @@ Separation closest_points(const ConvexPolyhedron& a, const ConvexPolyhedron& b) 
 
 template <NumberPolicy Policy>
 std::optional<Separation> separation(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  Overlap verdict;
-  {
-    PredicateScope scope;
-    verdict = classify_overlap<Policy>(a, b);
-  }
-  if (verdict != Overlap::separate) return std::nullopt;
+  if (classify_overlap<Policy>(a, b) != Overlap::separate) return std::nullopt;
   return closest_points<detail::ConstructionType<Policy>>(a, b);
 }
 

@@ -9,7 +9,6 @@
 
 #include "rockcontact/kernel/3d/plane.hpp"
 #include "rockcontact/kernel/3d/plane_cut.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -57,7 +56,6 @@ HalfspacePolyhedron with_vertices_of_b(HalfspacePolyhedron p, const std::vector<
 
 template <NumberPolicy Policy>
 HalfspacePolyhedron intersection(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  const PredicateScope scope;
   HalfspacePolyhedron result(a);
   std::vector<int> b_face(result.planes().size(), not_of_b);
   for (std::size_t f = 0; f < b.faces().size() && !result.empty(); ++f) {

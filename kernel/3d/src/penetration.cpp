@@ -7,7 +7,6 @@
 #include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/overlap.hpp"
 #include "rockcontact/kernel/core/detail/exact_number.hpp"
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -90,15 +89,9 @@ Penetration minimum_translation(const ConvexPolyhedron& cp, const ConvexPolyhedr
 
 template <NumberPolicy Policy>
 std::optional<Penetration> penetration(const ConvexPolyhedron& cp, const ConvexPolyhedron& tp) {
-  Overlap verdict;
-  std::optional<detail::MinkowskiEdgePairs<Policy>> pairs;
-  {
-    PredicateScope scope;
-    verdict = classify_overlap<Policy>(cp, tp);
-    if (verdict == Overlap::overlap) pairs.emplace(cp, tp);
-  }
-  if (verdict != Overlap::overlap) return std::nullopt;
-  return minimum_translation<detail::ConstructionType<Policy>>(cp, tp, *pairs);
+  if (classify_overlap<Policy>(cp, tp) != Overlap::overlap) return std::nullopt;
+  const detail::MinkowskiEdgePairs<Policy> pairs(cp, tp);
+  return minimum_translation<detail::ConstructionType<Policy>>(cp, tp, pairs);
 }
 
 #define ROCKCONTACT_INSTANTIATE(P) \

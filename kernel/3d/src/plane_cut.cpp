@@ -1,5 +1,5 @@
 // Clipping and cutting a HalfspacePolyhedron by a plane (plane_cut.hpp): the vertex signs are
-// decided first, in a PredicateScope; the rest is combinatorial and policy-free.
+// decided first; the rest is combinatorial and policy-free.
 
 #include "rockcontact/kernel/3d/plane_cut.hpp"
 
@@ -8,18 +8,11 @@
 #include <limits>
 #include <vector>
 
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 
 namespace rockcontact::kernel {
 namespace {
 
 constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-
-template <NumberPolicy Policy>
-std::vector<Sign> classify(const HalfspacePolyhedron& p, const Plane3& plane) {
-  const PredicateScope scope;
-  return p.sides<Policy>(plane);
-}
 
 // The pieces of the result under construction: the old vertices kept, renumbered on first use,
 // and one new implicit vertex per cut edge.
@@ -145,13 +138,13 @@ HalfspacePolyhedron below(const HalfspacePolyhedron& p, const Plane3& plane, con
 
 template <NumberPolicy Policy>
 HalfspacePolyhedron clip(const HalfspacePolyhedron& p, const Plane3& plane) {
-  return below(p, plane, classify<Policy>(p, plane));
+  return below(p, plane, p.sides<Policy>(plane));
 }
 
 template <NumberPolicy Policy>
 std::pair<HalfspacePolyhedron, HalfspacePolyhedron> cut_by_plane(const HalfspacePolyhedron& p,
                                                                    const Plane3& plane) {
-  std::vector<Sign> side = classify<Policy>(p, plane);
+  std::vector<Sign> side = p.sides<Policy>(plane);
   HalfspacePolyhedron lower = below(p, plane, side);
   for (Sign& s : side) s = -s;
   return {std::move(lower), below(p, plane.opposite(), side)};

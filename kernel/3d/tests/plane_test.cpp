@@ -259,8 +259,8 @@ int three_plane_side_bound_cases(std::mt19937_64& rng, std::initializer_list<int
 // The running error bound of the three-plane side's double filter (detail/running_error.hpp),
 // re-derived: the formula in RunningError against the same formula in GMP rationals, on random
 // planes and on lattice incidences moved by a hair (where the value is tiny and the bound is
-// what decides), under rounding to nearest and upward (the mode inside a PredicateScope after
-// an interval stage).
+// what decides), under rounding to nearest (the library's mode) and upward (the bound takes a
+// whole ulp per operation, enough for any mode barring overflow).
 BOOST_AUTO_TEST_CASE(running_error_bound_holds) {
   std::mt19937_64 rng(rockcontact::testing::seed_for("running_error_bound_holds", 20261130));
   BOOST_TEST(three_plane_side_bound_cases<double>(rng, {FE_TONEAREST, FE_UPWARD}) >= 1500);

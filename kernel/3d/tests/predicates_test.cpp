@@ -164,8 +164,8 @@ BOOST_AUTO_TEST_CASE(triple_signs_equal_triple_sign) {
   }
 }
 
-// The static filter never certifies a wrong sign, under round to nearest and upward rounding
-// (inside a PredicateScope the filter may run after an interval stage switched the mode), and
+// The static filter never certifies a wrong sign, under round to nearest (the library's mode)
+// and upward rounding (its eps of a whole ulp holds in any mode barring overflow), and
 // it certifies most random inputs. Its constant is exactly 9 eps, eps = 2^-52 (predicates.hpp).
 BOOST_AUTO_TEST_CASE(static_filter_rederived_under_both_rounding_modes) {
   BOOST_TEST(rkd::triple_error_factor == 9 * 0x1p-52);

@@ -7,8 +7,6 @@
 
 namespace rockcontact::kernel::detail {
 
-void restore_rounding_mode() noexcept { CGAL::FPU_set_cw(UpwardRounding::scope_saved_mode); }
-
 namespace {
 
 const char* name_of(PredicateKind kind) {

@@ -39,7 +39,7 @@
 //   Float     X in double, no bound (what a plain DEM code does); s clamped to [0, 1].
 //   Exact     X exact, each coordinate rounded to nearest.
 //   Checked   as Filtered (Checked compares signs; a construction has no single right double).
-// The construction rounds to nearest: it is never evaluated inside a PredicateScope.
+// The construction rounds to nearest, the mode of all the library's double code.
 // kernel/2d/tests/crossing_point_test.cpp re-derives the bound against GMP on near-parallel input.
 
 #include <optional>

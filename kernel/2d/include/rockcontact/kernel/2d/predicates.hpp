@@ -14,8 +14,10 @@
 // Checked since a sign has only one exact value:
 //   1. double filter, inline here: cross has a static bound, crossing_side a semi-static one
 //      and a check that a or b is c's own line (which settles crossings on collinear edges);
-//      the bounds are derived for any IEEE rounding mode (eps = 2^-52 per operation), because
-//      inside a PredicateScope they may run after an interval stage switched to upward rounding;
+//      they run in round to nearest, the library's mode outside an interval stage, and take
+//      eps = 2^-52 per operation, a whole ulp: twice round to nearest's error, and enough for
+//      any rounding mode as long as nothing overflows (a directed mode saturates an overflow
+//      at DBL_MAX instead of infinity, which the filters' finiteness checks would not see);
 //   2. interval: the formula in CGAL::Interval_nt_advanced (predicates_staged.cpp); it settles
 //      exact zeros whose operations are all exact (touching dyadic coordinates);
 //   3. exact: the formula in CGAL::Mpzf;

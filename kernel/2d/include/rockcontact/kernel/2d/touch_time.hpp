@@ -70,8 +70,7 @@
 //             hexadecimal floats) if the decisions differ: whether there is a touch, which
 //             root, the sign of a comparison. The rounded values are Filtered's.
 //
-// Rounded outputs (s and λ as doubles), independent of the FPU rounding mode (so first_touch
-// may be called inside a PredicateScope):
+// Rounded outputs (s and λ as doubles), independent of the FPU rounding mode:
 //   Exact     s and λ correctly rounded: the double nearest to the exact value, ties to even
 //             (|s' - s| <= 2^-53 s, |λ' - λ| <= 2^-53 λ), found by bisecting the doubles of the
 //             interval enclosure with exact comparisons sign(s - x) (a surd sign again).

@@ -4,7 +4,7 @@
 // intersection<P>(a, b) clips a by every face plane of b in turn (plane_cut.hpp): A ∩ B is the
 // part of A below all of B's face planes. Every decision is an exact sign under Filtered, Exact
 // and Checked (orient3d on input points, the three-plane side on implicit vertices), all taken
-// inside one PredicateScope, before anything is constructed. A clip that leaves no interior
+// before anything is constructed. A clip that leaves no interior
 // returns the empty polyhedron, so the result is empty exactly when the interiors of a and b
 // are disjoint (separate or touching: the contact set of a touching pair is not represented),
 // and is A ∩ B otherwise. The clipping stops at the first empty result.

@@ -25,8 +25,7 @@
 // p and the empty polyhedron. The empty polyhedron is returned for every result without
 // interior (the lower-dimensional set p ∩ plane is not represented).
 // Cost: one predicate per vertex, O(V + E) work plus a linear search among the k new vertices
-// for each cut edge (O(k^2), k the size of the section); no construction. The predicates run
-// in a PredicateScope.
+// for each cut edge (O(k^2), k the size of the section); no construction.
 
 #include <utility>
 

@@ -17,8 +17,8 @@
 //   a + b, a - b   <= 4 u^2 |result|
 //   a * b          <= 8 u^2 |result|
 // Users take 2^-100 = 64 u^2 per operation (running_error.hpp), a factor 8 of margin.
-// Requires round to nearest: never call it inside a PredicateScope (whose interval stage may
-// switch the FPU to upward rounding); the kernel's constructions run outside one.
+// Requires round to nearest, the mode of all the library's double code (an interval stage
+// switches to upward rounding for its own evaluation only).
 // An overflow shows as a non-finite hi or lo; below 2^-969 the low word loses bits to underflow,
 // which users bound as an absolute error (running_error.hpp).
 

@@ -10,8 +10,12 @@
 // The stages, as in CGAL's Filtered_predicate and geogram's PCK:
 //   1. double filter: inline in the predicate's header, with a proven bound (static or
 //      semi-static); it answers almost always and needs no rounding-mode switch;
-//   2. interval: f in CGAL::Interval_nt_advanced with the FPU rounding upward (one switch per
-//      PredicateScope, predicate_scope.hpp; else one per call). The sign is certain when the
+//   2. interval: f in CGAL::Interval_nt_advanced with the FPU rounding upward, switched for this
+//      evaluation alone and restored after it (CGAL::Protect_FPU_rounding). All other double
+//      code, the filters included, runs in round to nearest: it is the mode the compilers
+//      assume (neither honours FENV_ACCESS), and a filter run under upward rounding once gave a
+//      wrong sign, its overflow saturating at DBL_MAX where a rewritten |x| |y| = |x y| read
+//      it. A switch costs a few cycles beside the interval evaluation. The sign is certain when the
 //      interval excludes zero, or is the point [0, 0], which happens when every operation was
 //      exact: an exact touch between dyadic coordinates is settled here, without GMP;
 //   3. exact: f in CGAL::Mpzf, an exact ring of floating-point integers that holds a product
@@ -25,7 +29,6 @@
 
 #include <span>
 
-#include "rockcontact/kernel/core/predicate_scope.hpp"
 #include "rockcontact/kernel/core/predicate_stats.hpp"
 #include "rockcontact/kernel/core/sign.hpp"
 
@@ -45,37 +48,6 @@ T difference(double a, double b) {
 
 inline Sign to_sign(CGAL::Sign s) { return static_cast<Sign>(static_cast<int>(s)); }
 
-// Upward rounding for the lifetime of the object: switches the mode unless a PredicateScope
-// already did; inside a scope the switch is left for the scope to undo.
-class UpwardRounding {
- public:
-  UpwardRounding() noexcept {
-    PredicateScopeState& state = predicate_scope_state;
-    if (state.switched) return;
-    const CGAL::FPU_CW_t previous = CGAL::FPU_get_cw();
-    CGAL::FPU_set_cw(CGAL_FE_UPWARD);
-    if (state.depth > 0) {
-      state.switched = true;
-      scope_saved_mode = previous;
-    } else {
-      restore_ = true;
-      saved_ = previous;
-    }
-  }
-  ~UpwardRounding() {
-    if (restore_) CGAL::FPU_set_cw(saved_);
-  }
-  UpwardRounding(const UpwardRounding&) = delete;
-  UpwardRounding& operator=(const UpwardRounding&) = delete;
-
-  // The mode the outermost scope restores (restore_rounding_mode, core/src).
-  static inline thread_local CGAL::FPU_CW_t scope_saved_mode{};
-
- private:
-  bool restore_ = false;
-  CGAL::FPU_CW_t saved_{};
-};
-
 template <class Formula>
 Sign exact_sign(const Formula& f) {
   return to_sign(CGAL::sign(f(As<CGAL::Mpzf>{})));
@@ -86,7 +58,7 @@ template <class Formula>
 Sign interval_then_exact_sign(PredicateKind kind, const Formula& f) {
   count_interval_fallback(kind);
   {
-    const UpwardRounding upward;
+    const CGAL::Protect_FPU_rounding<true> upward(CGAL_FE_UPWARD);
     const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(f(As<CGAL::Interval_nt_advanced>{}));
     if (CGAL::is_certain(s)) return to_sign(CGAL::get_certain(s));
   }
