@@ -6,6 +6,7 @@
 // cube held by friction, and the energy balance with the integrator's own dissipation.
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -314,6 +315,39 @@ BOOST_AUTO_TEST_CASE(monitor_stops_a_block_sinking_through_another) {
       BOOST_TEST(stopped.empty());
     }
   }
+}
+
+// An open-close iteration that does not converge names the contact it could not settle. A cube
+// 1 mm above the slab falling at 2 m/s meets it within the step: its contacts start open, the
+// first solve drives it into the slab and they close. Allowed one iteration and no step cut
+// (min_dt_ratio 0.6 > 1/2), the step stops with Stability3dError naming both blocks, the
+// contact's place (a bottom corner of the cube, the later block) and what to change.
+BOOST_AUTO_TEST_CASE(an_unsettled_open_close_iteration_names_its_contact) {
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  params.max_open_close = 1;
+  params.min_dt_ratio = 0.6;
+  auto blocks = cube_on_slab(1.0e-3);
+  blocks[1].velocity = {0, 0, -2.0, 0, 0, 0};
+  Dda3d sim(blocks, penalty(1.0e9, 1.0e8, 30.0), params);
+  std::string stopped;
+  try {
+    sim.step();
+  } catch (const Stability3dError& e) {
+    stopped = e.what();
+  }
+  BOOST_TEST_MESSAGE(stopped);
+  BOOST_TEST(stopped.find("the open-close iteration does not converge in 1 iteration:") != std::string::npos);
+  BOOST_TEST(stopped.find("between block 'slab' and block 'cube'") != std::string::npos);
+  BOOST_TEST(stopped.find("lower kn (1e+09 N/m)") != std::string::npos);
+  // The contact point: a bottom corner of the cube, (±0.5, ±0.5, 0.001) (printed to 6 digits).
+  const std::size_t at = stopped.find(" at (");
+  BOOST_TEST_REQUIRE(at != std::string::npos);
+  double x = 0, y = 0, z = 0;
+  BOOST_TEST_REQUIRE(std::sscanf(stopped.c_str() + at, " at (%lf, %lf, %lf) m on the latter", &x, &y, &z) == 3);
+  BOOST_TEST(std::fabs(std::fabs(x) - 0.5) <= 1e-9);
+  BOOST_TEST(std::fabs(std::fabs(y) - 0.5) <= 1e-9);
+  BOOST_TEST(std::fabs(z - 1.0e-3) <= 1e-9);
 }
 
 // Two equal free cubes that start 0.1 mm into each other face-on, no gravity: every corner of

@@ -67,6 +67,9 @@ std::string number(double x) {
 
 std::string block_name(const std::string& id) { return "block '" + id + "'"; }
 
+// "1 iteration", "30 iterations".
+std::string iterations_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " iteration" : " iterations"); }
+
 Eigen::Vector3d vec(const Point3& p) { return {p.x, p.y, p.z}; }
 Point3 point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
@@ -434,6 +437,15 @@ struct Constraint {
   Eigen::Vector3d normal_in_tp = Eigen::Vector3d::Zero();  // the normal in tp's own axes (its rotation undone)
 };
 
+// The contact an open-close iteration that did not converge could not settle: the first of
+// those that changed between open and closed (or gave way from locked) in the most iterations.
+struct Unsettled {
+  const Constraint* contact = nullptr;  // in the attempt's list
+  std::size_t changes = 0;              // iterations in which it changed
+  std::size_t changed_last = 0;         // contacts that changed in the last iteration
+  std::size_t contacts = 0;             // in the list
+};
+
 ContactMode3d public_mode(detail::ContactMode mode) {
   switch (mode) {
     case detail::ContactMode::open: return ContactMode3d::open;
@@ -489,8 +501,9 @@ struct Dda3d::Impl {
                                                    std::span<const kernel::ContactConstraint> found) const;
   const Constraint* transferred_from(const std::vector<const Constraint*>& vanished,
                                      const kernel::ContactConstraint& c) const;
-  bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
-               double& numerical) const;
+  bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations, double& numerical,
+               Unsettled& unsettled) const;
+  std::string describe(const Unsettled& u) const;
   void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
              const std::vector<char>* settling = nullptr) const;
   void settle();
@@ -1101,12 +1114,14 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
   }
 }
 
-// Steps 2-3: the open-close iteration on `list`; false when it does not converge or the solution
-// is not finite.
+// Steps 2-3: the open-close iteration on `list`; false when it does not converge (`unsettled`
+// then names the contact it could not settle) or the solution is not finite.
 bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations,
-                          double& numerical) const {
+                          double& numerical, Unsettled& unsettled) const {
   // The increments of a block in d, a view (empty for a fixed block).
   const auto increments = [&](const Block& b) { return d.segment(static_cast<Eigen::Index>(b.offset), b.dof); };
+  std::vector<std::size_t> changes(list.size(), 0);  // per contact: the iterations it changed in
+  std::vector<char> changed_now(list.size(), 0);
   for (iterations = 1; iterations <= params.max_open_close; ++iterations) {
     solve(list, d, numerical);
     if (!d.allFinite()) return false;
@@ -1126,8 +1141,11 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // contact does not have (a step accepted so would stop a frictionless block for every new
       // contact). A sliding contact that locks again is taken over for the next iteration
       // without forcing one: it held the friction force, which the locked spring starts from.
-      changed = changed || was_closed != is_closed ||
-                (k.state.mode == detail::ContactMode::locked && k.update.mode == detail::ContactMode::sliding);
+      const bool this_changed = was_closed != is_closed || (k.state.mode == detail::ContactMode::locked &&
+                                                            k.update.mode == detail::ContactMode::sliding);
+      changed_now[static_cast<std::size_t>(c)] = this_changed;
+      changes[static_cast<std::size_t>(c)] += this_changed;
+      changed = changed || this_changed;
       // The friction work of a sliding contact: its force times the slip, the tangential
       // relative displacement less what the spring took up elastically.
       k.slip_work = 0.0;
@@ -1162,7 +1180,28 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
     }
     for (Constraint& k : list) detail::next_iteration(k.state, k.update);
   }
+  if (list.empty()) return false;  // nothing to name (with no contact nothing changes)
+  const auto worst = std::max_element(changes.begin(), changes.end());
+  unsettled.contact = &list[static_cast<std::size_t>(worst - changes.begin())];
+  unsettled.changes = *worst;
+  unsettled.changed_last = static_cast<std::size_t>(std::count(changed_now.begin(), changed_now.end(), 1));
+  unsettled.contacts = list.size();
   return false;
+}
+
+// The error's account of the contact an open-close iteration could not settle.
+std::string Dda3d::Impl::describe(const Unsettled& u) const {
+  const Constraint& k = *u.contact;
+  const Point3& x = k.geometry.point_tp;
+  const Eigen::Vector3d& n = k.kinematics.normal;
+  return std::to_string(u.changed_last) + " of " + std::to_string(u.contacts) +
+         " contacts still changed in the last; the one that changed most often (in " + iterations_text(u.changes) +
+         ") is between " + block_name(blocks[k.a].spec.id) + " and " + block_name(blocks[k.b].spec.id) + ", at (" +
+         number(x.x) + ", " + number(x.y) + ", " + number(x.z) + ") m on the latter, normal (" + number(n.x()) + ", " +
+         number(n.y()) + ", " + number(n.z()) + "), gap " + number(k.kinematics.gap) +
+         " m. A contact that opens and closes at every step size sits at a touch that carries almost no load: "
+         "check the blocks' placement there (two faces meant to touch that overlap or stand apart by a rounding), "
+         "or lower kn (" + number(k.law.kn) + " N/m) so the contact settles in the penetration it allows";
 }
 
 double Dda3d::Impl::largest_displacement(const Eigen::VectorXd& d) const {
@@ -1298,7 +1337,8 @@ void Dda3d::step() {
     Eigen::VectorXd d;
     std::size_t iterations = 0;
     double numerical = 0.0;
-    const bool converged = s.attempt(list, d, iterations, numerical);
+    Unsettled unsettled;
+    const bool converged = s.attempt(list, d, iterations, numerical, unsettled);
     const double moved = converged ? s.largest_displacement(d) : 0.0;
     if (converged && moved <= limit) {
       s.accept(std::move(list), d, iterations, numerical);
@@ -1314,8 +1354,10 @@ void Dda3d::step() {
           number(min_dt) + " s: " +
           (converged ? "a vertex moves " + number(moved) + " m in a step, more than max_displacement_ratio x size = " +
                            number(limit) + " m"
-                     : "the open-close iteration does not converge in " +
-                           std::to_string(s.params.max_open_close) + " iterations"));
+                     : unsettled.contact ? "the open-close iteration does not converge in " +
+                                               iterations_text(s.params.max_open_close) + ": " +
+                                               s.describe(unsettled)
+                                         : std::string("the solution is not finite")));
     }
     s.h = next;
   }
