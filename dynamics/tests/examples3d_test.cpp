@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rockcontact/dynamics/io/cut3d.hpp"
+#include "rockcontact/dynamics/io/scene3d.hpp"
 #include "rockcontact/kernel/3d/block_cutting.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/kernel/3d/halfspace_polyhedron.hpp"
@@ -85,6 +86,22 @@ BOOST_AUTO_TEST_CASE(block_system_has_18_blocks_filling_the_cube) {
   for (const auto& b : blocks) sum += volume(b);
   BOOST_TEST(sum == 1000.0, boost::test_tools::tolerance(1e-12));
   expect_cut_blocks(scene, "block_system_cut.json", {"ground"});
+}
+
+// The jointed mass (docs/validation.md runs it): its region cut into 147 movable blocks that fill
+// the 6 x 6 x 4 m box exactly (the cut's exact pieces rounded once: 1e-12 relative), on the
+// fixed slab, with the penalties left to auto (the defaults the run checks).
+BOOST_AUTO_TEST_CASE(jointed_mass_cuts_into_147_blocks_filling_its_box) {
+  const dyn::Scene3d scene = dyn::read_scene3d_file(dir + "jointed_mass.json");
+  BOOST_TEST(scene.generated_count == 147u);
+  BOOST_TEST(scene.blocks.size() == 148u);
+  double sum = 0;
+  for (std::size_t i = scene.generated_first; i < scene.generated_first + scene.generated_count; ++i) {
+    BOOST_TEST(!scene.blocks[i].fixed);
+    for (const auto& part : scene.blocks[i].parts) sum += volume(part);
+  }
+  BOOST_TEST(sum == 144.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(scene.kn_auto);
 }
 
 BOOST_AUTO_TEST_CASE(wedge_rests_on_the_two_joints) {
