@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -130,6 +131,9 @@ struct Topology {
   // Per edge (first < second): [0] the face whose loop runs first -> second, [1] the other.
   std::vector<std::array<std::uint32_t, 2>> edge_faces;
   std::vector<bool> internal;  // per face
+  // Per face: internal, and in the plane of an outer face of another part with the same outward
+  // normal (mark_internal_faces): the face continues that face across a concave edge.
+  std::vector<bool> continues_outer;
 
   const Point3& p(std::uint32_t i) const { return (*poly)[i]; }
   const ConvexPolyhedron::Face& face(std::uint32_t f) const { return poly->faces()[f]; }
@@ -143,7 +147,8 @@ struct Topology {
 };
 
 Topology make_topology(const ConvexPolyhedron& poly, std::uint32_t part) {
-  Topology t{&poly, part, {}, {}, {}, {}, std::vector<bool>(poly.faces().size(), false)};
+  Topology t{&poly, part, {}, {}, {}, {}, std::vector<bool>(poly.faces().size(), false),
+             std::vector<bool>(poly.faces().size(), false)};
   t.neighbours.resize(poly.size());
   t.vertex_edges.resize(poly.size());
   t.vertex_faces.resize(poly.size());
@@ -240,6 +245,32 @@ void mark_internal_faces(std::vector<Topology>& parts, double flush) {
                            inside_loop<Policy>(t, loop, *above, loop_centroid(other, g)))) {
             t.internal[f] = true;
           }
+        }
+      }
+    }
+  }
+  // An internal face in the plane of another part's outer face, facing the same way: a face of
+  // the block's concave edge (the face of the keel part below a wedge's two joints, where the
+  // joint faces of the parts beside it meet).
+  for (Topology& t : parts) {
+    for (std::uint32_t f = 0; f < t.internal.size(); ++f) {
+      if (!t.internal[f]) continue;
+      const auto& loop = t.face(f);
+      const Point3 &f0 = t.p(loop[0]), &f1 = t.p(loop[1]), &f2 = t.p(loop[2]);
+      const Vec<double> n = cross(sub<double>(f0, f1), sub<double>(f0, f2));
+      for (const Topology& other : parts) {
+        if (&other == &t || t.continues_outer[f]) continue;
+        for (std::uint32_t g = 0; g < other.internal.size() && !t.continues_outer[f]; ++g) {
+          if (other.internal[g]) continue;
+          const auto& other_loop = other.face(g);
+          const Vec<double> m = cross(sub<double>(other.p(other_loop[0]), other.p(other_loop[1])),
+                                      sub<double>(other.p(other_loop[0]), other.p(other_loop[2])));
+          const bool on_plane = std::all_of(other_loop.begin(), other_loop.end(), [&](std::uint32_t k) {
+            const auto height = face_height(t, f, other.p(k));
+            const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
+            return within<Policy>(height, flush) && within<Policy>(depth, flush);
+          });
+          t.continues_outer[f] = on_plane && dot(n, m) > 0.0;
         }
       }
     }
@@ -355,17 +386,28 @@ struct Ties {
   double rounding = 0.0;
 };
 
-// The shortest exit of a vertex strictly inside Y: the non-internal face it is least deep
-// below (eq. 4), ties to the lowest index.
-template <NumberPolicy Policy>
-std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
+// Can a vertex inside Y leave it through face f? Outer faces, and internal faces that continue
+// an outer one: a vertex pushed past a concave edge of the block leaves by the plane of a face
+// meeting there (§2.2.2), as the crest of a wedge settling into its base's keel part does.
+bool exit_face(const Topology& y, std::uint32_t f) { return !y.internal[f] || y.continues_outer[f]; }
+
+// The shortest exit of a vertex strictly inside Y: the exit face it is least deep below (eq. 4),
+// ties to the lowest index, among those `admits` (all when none does).
+template <NumberPolicy Policy, class Admits>
+std::optional<std::uint32_t> least_deep_exit(const Point3& v, const Topology& y, const Admits& admits) {
   std::optional<std::uint32_t> best;
   for (std::uint32_t f = 0; f < y.internal.size(); ++f) {
-    if (y.internal[f]) continue;
+    if (!exit_face(y, f) || !admits(f)) continue;
     if (!best || compare_distances<Policy>(face_height(y, f, v), face_height(y, *best, v)) == Sign::positive) {
       best = f;
     }
   }
+  return best;
+}
+
+template <NumberPolicy Policy>
+std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
+  const std::optional<std::uint32_t> best = least_deep_exit<Policy>(v, y, [](std::uint32_t) { return true; });
   if (!best) return std::nullopt;
   return Located{Feature::Kind::face, *best, true, false, false};
 }
@@ -555,6 +597,26 @@ auto candidate_distance(const Plane& plane, Point3 v, Point3 y0, Point3 y1, bool
                   }};
 }
 
+// Are [a, b] and [c, d] within cone_flush_angle of parallel (|n|^2 <= sin^2 |b - a|^2 |d - c|^2,
+// n = (b - a) x (d - c), exact, degree 4)? Their crossing then runs along them a thousand
+// times faster than they move across each other, and its plane is the rounding's: edges meant
+// to be collinear (a block's edge slid along the concave edge it rests in) cross at an angle of
+// 1e-16, where the construction divides by |n|^2 and gives no number. The vertices at the ends
+// of their overlap carry such a contact, as for parallel edges; nor do they span a candidate
+// plane of a vertex contact (step 3).
+template <NumberPolicy Policy>
+bool nearly_parallel(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = d.x - c.x, vy = d.y - c.y, vz = d.z - c.z;
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const double bound = cone_flush_sine * cone_flush_sine * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
+  if (std::isfinite(bound) && nx * nx + ny * ny + nz * nz > 2.0 * bound) return false;
+  return decide<Policy>([&](auto as) {
+           using T = typename decltype(as)::type;
+           const Vec<T> u = sub<T>(a, b), v = sub<T>(c, d), n = cross(u, v);
+           return T(dot(n, n) - T(T(T(cone_flush_sine * cone_flush_sine) * dot(u, u)) * dot(v, v)));
+         }) != Sign::positive;
+}
+
 // Step 3 of the header: the candidate planes of a vertex-edge or vertex-vertex contact that pass
 // the no-overlap check, in tie-break order, and the shortest exit among them.
 template <NumberPolicy Policy>
@@ -577,7 +639,7 @@ void choose_plane(Decision& d, const Topology& x, std::uint32_t v, const Topolog
     const Point3 u = x.p(x.neighbours[v][k]);
     for (std::uint32_t g : y_edges) {
       const Point3 c = y.p(y.poly->edges()[g].first), e = y.p(y.poly->edges()[g].second);
-      if (parallel<Policy>(x.p(v), u, c, e)) continue;
+      if (nearly_parallel<Policy>(x.p(v), u, c, e)) continue;  // a plane of the rounding's, or none
       for (int sigma : {1, -1}) {
         planes.push_back({x.p(v), u, c, e, sigma, Plane::Source::edge_pair, x.vertex_edges[v][k], g});
       }
@@ -621,13 +683,25 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
   d.x_is_cp = x_is_cp;
   d.x_feature = {Feature::Kind::vertex, v, x.part};
   d.y_feature = {at->kind, at->index, y.part};
+  if (at->inside) {
+    // The shortest exit among the faces X can have come through: those whose plane has X's
+    // tangent cone at v on its outer side (flush counting as on it). A vertex that sank into a
+    // concave corner lies nearest the plane of a face its own block's edges cross (the keel
+    // part's top face, coplanar with the wedge's own top, under a wedge's crest, which held the
+    // wedge up by that horizontal plane); the pure shortest exit is the fallback.
+    const Cone x_cone = vertex_cone(x, v);
+    const auto entered = least_deep_exit<Policy>(x.p(v), y, [&](std::uint32_t f) {
+      return separates<Policy>(face_plane(y, f, Plane::Source::y_face), x_cone, Cone{}, true);
+    });
+    if (entered) d.y_feature.index = *entered;
+  }
   d.x0 = d.x1 = x.p(v);
   d.touching = at->touching;
   switch (at->kind) {
     case Feature::Kind::face:
       d.type = ConstraintType::vertex_face;
-      d.plane = face_plane(y, at->index, Plane::Source::y_face);
-      d.y0 = d.y1 = y.p(y.face(at->index)[0]);
+      d.plane = face_plane(y, d.y_feature.index, Plane::Source::y_face);
+      d.y0 = d.y1 = y.p(y.face(d.y_feature.index)[0]);
       d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
       // A vertex on a face, with an edge of X leaving it into Y: the face's plane does not
       // separate the blocks there.
@@ -711,24 +785,6 @@ bool segment_meets(const Topology& t, const Point3& a, const Point3& b) {
   return true;
 }
 
-// Are [a, b] and [c, d] within cone_flush_angle of parallel (|n|^2 <= sin^2 |b - a|^2 |d - c|^2,
-// n = (b - a) x (d - c), exact, degree 4)? Their crossing then runs along them a thousand
-// times faster than they move across each other, and its plane is the rounding's: edges meant
-// to be collinear (a block's edge slid along the concave edge it rests in) cross at an angle of
-// 1e-16, where the construction divides by |n|^2 and gives no number. The vertices at the ends
-// of their overlap carry such a contact, as for parallel edges.
-template <NumberPolicy Policy>
-bool nearly_parallel(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = d.x - c.x, vy = d.y - c.y, vz = d.z - c.z;
-  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  const double bound = cone_flush_sine * cone_flush_sine * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
-  if (std::isfinite(bound) && nx * nx + ny * ny + nz * nz > 2.0 * bound) return false;
-  return decide<Policy>([&](auto as) {
-           using T = typename decltype(as)::type;
-           const Vec<T> u = sub<T>(a, b), v = sub<T>(c, d), n = cross(u, v);
-           return T(dot(n, n) - T(T(T(cone_flush_sine * cone_flush_sine) * dot(u, u)) * dot(v, v)));
-         }) != Sign::positive;
-}
 
 // Step 2 of the header: edge e = [a, b] of X (cp) against edge g = [c, d] of Y (tp).
 template <NumberPolicy Policy>

@@ -16,7 +16,12 @@
 //   1. Each vertex v of X is located against Y with exact predicates:
 //      * v strictly inside Y (below every face plane): a penetrating vertex; its face is the
 //        shortest exit (§2.2.1, eq. 4), the face of Y whose plane v is least deep below, its
-//        depth h_f / |n_f| compared exactly (ties: the lowest face index). Vertex-face. A
+//        depth h_f / |n_f| compared exactly (ties: the lowest face index), among the faces X
+//        can have entered through: those whose plane has X's tangent cone at v on its outer
+//        side (up to cone_flush_sine); among all faces when none has. A vertex sunk into a
+//        corner is otherwise nearest a face its own block's edges cross (a wedge's crest sunk
+//        10⁻⁷ m into the keel below its joints lies nearest the base's top face, coplanar with
+//        the wedge's own, whose plane would hold the wedge up). Vertex-face. A
 //        vertex inside by no more than S_tie (below) under some faces is on the boundary but for
 //        rounding: it is located as touching, by the tests below with those faces' heights 0.
 //      * otherwise the closest point p of Y to v (p = v when v is on Y's boundary) lies in the
@@ -43,7 +48,9 @@
 //   3. Vertex-edge and vertex-vertex contacts have no unique plane (§2.2). The shortest-exit
 //      rule (§2.2.1) chooses one among candidate planes neighbouring the contact: the faces of
 //      Y at the edge (or at the vertex w), the faces of X at v, and the planes spanned by an
-//      edge of X at v and the edge g (or an edge of Y at w), non-parallel. A candidate passes
+//      edge of X at v and the edge g (or an edge of Y at w), more than cone_flush_sine from
+//      parallel (nearer, their plane is the rounding's: two keel edges of a wedge slid 10⁻⁵ m
+//      along the keel spanned a plane whose normal was 0/0). A candidate passes
 //      the no-overlap check when, oriented from X to Y, the edges of X leaving v point to its
 //      non-positive side and Y's tangent cone at p (its edges leaving w; or +-g and the edges
 //      of g's two faces) points to its non-negative side (exact signs of triple products; for
@@ -100,9 +107,12 @@
 // their implicit vertices; the other part on the face's outer side, exact; and the two faces
 // overlapping, the centroid of one strictly inside the other, so that coplanar faces meeting
 // only along an edge, such as the two faces of a step or the joint face a wedge rests on beside
-// its base's concave edge, stay outer faces); an internal face carries no vertex-face contact, is no candidate plane and no
-// shortest exit of a penetrating vertex (a vertex inside a part whose every face is internal
-// gives no constraint). Parts are assumed to meet along whole faces (a conforming
+// its base's concave edge, stay outer faces); an internal face carries no vertex-face contact and
+// is no candidate plane. It is a shortest exit of a penetrating vertex only when it continues an
+// outer face of another part (the same plane, the same outward normal): a vertex pushed past the
+// block's concave edge there leaves by that plane (a wedge's crest sunk into the keel part below
+// its two joints, whose joint faces are internal, leaves by a joint). A vertex inside a part with
+// no exit face gives no constraint. Parts are assumed to meet along whole faces (a conforming
 // decomposition); a face only partly covered by its neighbour is treated as internal as a whole.
 // The multiple-plane rule of §2.2.2 follows from the decomposition itself: a vertex in a concave
 // edge or corner of a block touches each convex part meeting there, and each part pair gives one
