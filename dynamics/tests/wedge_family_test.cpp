@@ -308,50 +308,46 @@ BOOST_AUTO_TEST_CASE(a_sliding_wedge_keeps_both_contact_polygons) {
   }
 }
 
-// A wedge pressed into its base's keel, as its penalty springs let it settle (10^-7 m and more
-// at kn ~ 10^11 N/m on a 40 m block): a vertex pushed past a concave edge of the base lies inside
-// the keel part (below both joints), whose joint faces are internal. Its exit is the plane of a
-// joint (the internal face continues the neighbouring part's joint face, §2.2.2), never the keel
-// part's top face: that horizontal plane held the family's case 6 up at the crest and gave a
-// factor of safety 13.6 % high. Every penetrating constraint of the pressed wedge lies on one of
-// the joints, its normal within 10^-9 of the joint's. (Pressed into the V, the wedge also moves
-// into the slope wherever the V's bisector points into it, and the base's vertices on the free
-// face then lie nearest the wedge's front face: the entry rule of the kernel's step 1, not the
-// shortest exit alone, gives them their joint.) Slid by 10^-6 of its line of intersection, where
-// the base's and the wedge's keel edges are parallel but for rounding, every normal is a number:
+// The family's case 6 (seed 1: dips 53.6 and 54.1 degrees, Hoek & Bray FS 3.3877 at phi = 40),
+// its friction reduced to tan(phi) / (1.08 FS), with the default "kn": "auto": Hoek & Bray's
+// wedge then slides at a = g sin(psi) (1 - 1 / 1.08). Its crest settles 10^-7 m into the base's
+// keel part (below both joints, whose joint faces are internal), whose only outer face nearby is
+// its top: as the shortest exit that horizontal plane held the wedge up (it moved 5.3e-5 m in
+// 0.2 s, and its factor of safety came out 3.8488, +13.6 %). The keel part's joint faces continue
+// the other parts' and are exits now. The wedge must slide at least half of (1/2) a t^2 in
+// 0.2 s (the locked start costs the first milliseconds of the slide; bench/wedge_family.py has
+// the factors of safety to 0.05 %).
+BOOST_AUTO_TEST_CASE(a_wedge_in_its_keel_slides_when_friction_lets_it) {
+  dyn::WedgeCase c = dyn::generate_wedges(1, 10, 40.0)[6];
+  const double g = 9.81;
+  const double fs = dyn::wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety;
+  BOOST_TEST_REQUIRE(fs == 3.3877, boost::test_tools::tolerance(1e-4));
+  const double reduced = std::atan(std::tan(40.0 * pi / 180) / (1.08 * fs)) * 180 / pi;
+  c.a.friction_angle_deg = c.b.friction_angle_deg = reduced;
+  const dyn::WedgeLimitEquilibrium r = dyn::wedge_factor_of_safety(c.a, c.b, 1.0);
+  const double a = dyn::wedge_slide_acceleration(r, g);
+  BOOST_TEST_REQUIRE(a > 0.0);
+  dyn::Scene3d scene = dyn::wedge_scene(c);
+  scene.law.kn = dyn::auto_normal_penalty3d(scene.blocks);
+  scene.law.kt = scene.law.kn / 10;
+  scene.params.dt = 1.0e-4;
+  dyn::Dda3d sim(scene.blocks, scene.law, scene.params);
+  const Point3 start = sim.blocks()[1].centroid;
+  const double t = 0.2;
+  while (sim.time() < t - 1e-9) sim.step();
+  const Point3 moved = minus(sim.blocks()[1].centroid, start);
+  const double slid = dot(moved, r.sliding);
+  BOOST_TEST_MESSAGE("case 6 at 1.08 FS: slid " << slid << " m in " << t << " s, Hoek & Bray " << 0.5 * a * t * t);
+  BOOST_TEST(slid >= 0.25 * a * t * t);
+}
+
+// Slid by 10^-6 and 10^-5 of their line of intersection, where the base's and the wedge's keel
+// edges are parallel but for rounding, every normal of the ten wedges' constraints is a number:
 // such an edge pair spanned a candidate plane whose normal was 0/0.
-BOOST_AUTO_TEST_CASE(a_wedge_pressed_into_its_keel_meets_only_its_joints) {
+BOOST_AUTO_TEST_CASE(keel_edges_parallel_but_for_rounding_span_no_plane) {
   for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 10, 40.0)) {
     const dyn::Scene3d scene = dyn::wedge_scene(c);
     const dyn::Block3dSpec &base = scene.blocks[0], &wedge = scene.blocks[1];
-    const Point3 na = upward_normal(c.a), nb = upward_normal(c.b);
-    Point3 into{-(na.x + nb.x), -(na.y + nb.y), -(na.z + nb.z)};
-    const double l = std::sqrt(dot(into, into));
-    into = {into.x / l, into.y / l, into.z / l};
-    for (const double depth : {1.0e-7, 1.0e-5, 1.0e-3}) {
-      std::vector<Point3> moved;
-      for (const Point3& v : wedge.parts[0].vertices()) {
-        moved.push_back({v.x + depth * into.x, v.y + depth * into.y, v.z + depth * into.z});
-      }
-      const auto faces = wedge.parts[0].input_faces();
-      const rockcontact::kernel::ConvexPolyhedron pressed = rockcontact::kernel::ConvexPolyhedron::make(
-          "wedge", moved, std::vector<rockcontact::kernel::ConvexPolyhedron::Face>(faces.begin(), faces.end()));
-      const auto constraints = rockcontact::kernel::contact_constraints<rockcontact::kernel::Filtered>(
-          base.parts, std::span<const rockcontact::kernel::ConvexPolyhedron>(&pressed, 1), 1.0e-2);
-      BOOST_TEST_CONTEXT("case seed " << c.seed << ", pressed " << depth << " m") {
-        std::size_t penetrating = 0;
-        for (const auto& constraint : constraints) {
-          if (!(constraint.gap < 0.0)) continue;
-          ++penetrating;
-          const double on_a = dot(constraint.normal, na), on_b = dot(constraint.normal, nb);
-          BOOST_TEST((on_a > 1.0 - 1.0e-9 || on_b > 1.0 - 1.0e-9),
-                     "normal (" << constraint.normal.x << ", " << constraint.normal.y << ", " << constraint.normal.z
-                                << ") at (" << constraint.point_tp.x << ", " << constraint.point_tp.y << ", "
-                                << constraint.point_tp.z << ")");
-        }
-        BOOST_TEST(penetrating >= 6u);  // the corners of both contact triangles
-      }
-    }
     const dyn::WedgeCorners k = dyn::wedge_corners(c);
     const Point3 along = minus(k.daylight, k.crest);
     for (const double s : {1.0e-6, 1.0e-5}) {

@@ -392,22 +392,16 @@ struct Ties {
 bool exit_face(const Topology& y, std::uint32_t f) { return !y.internal[f] || y.continues_outer[f]; }
 
 // The shortest exit of a vertex strictly inside Y: the exit face it is least deep below (eq. 4),
-// ties to the lowest index, among those `admits` (all when none does).
-template <NumberPolicy Policy, class Admits>
-std::optional<std::uint32_t> least_deep_exit(const Point3& v, const Topology& y, const Admits& admits) {
+// ties to the lowest index.
+template <NumberPolicy Policy>
+std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
   std::optional<std::uint32_t> best;
   for (std::uint32_t f = 0; f < y.internal.size(); ++f) {
-    if (!exit_face(y, f) || !admits(f)) continue;
+    if (!exit_face(y, f)) continue;
     if (!best || compare_distances<Policy>(face_height(y, f, v), face_height(y, *best, v)) == Sign::positive) {
       best = f;
     }
   }
-  return best;
-}
-
-template <NumberPolicy Policy>
-std::optional<Located> shortest_exit_face(const Point3& v, const Topology& y) {
-  const std::optional<std::uint32_t> best = least_deep_exit<Policy>(v, y, [](std::uint32_t) { return true; });
   if (!best) return std::nullopt;
   return Located{Feature::Kind::face, *best, true, false, false};
 }
@@ -683,25 +677,13 @@ std::optional<Decision> vertex_decision(const Topology& x, std::uint32_t v, bool
   d.x_is_cp = x_is_cp;
   d.x_feature = {Feature::Kind::vertex, v, x.part};
   d.y_feature = {at->kind, at->index, y.part};
-  if (at->inside) {
-    // The shortest exit among the faces X can have come through: those whose plane has X's
-    // tangent cone at v on its outer side (flush counting as on it). A vertex that sank into a
-    // concave corner lies nearest the plane of a face its own block's edges cross (the keel
-    // part's top face, coplanar with the wedge's own top, under a wedge's crest, which held the
-    // wedge up by that horizontal plane); the pure shortest exit is the fallback.
-    const Cone x_cone = vertex_cone(x, v);
-    const auto entered = least_deep_exit<Policy>(x.p(v), y, [&](std::uint32_t f) {
-      return separates<Policy>(face_plane(y, f, Plane::Source::y_face), x_cone, Cone{}, true);
-    });
-    if (entered) d.y_feature.index = *entered;
-  }
   d.x0 = d.x1 = x.p(v);
   d.touching = at->touching;
   switch (at->kind) {
     case Feature::Kind::face:
       d.type = ConstraintType::vertex_face;
-      d.plane = face_plane(y, d.y_feature.index, Plane::Source::y_face);
-      d.y0 = d.y1 = y.p(y.face(d.y_feature.index)[0]);
+      d.plane = face_plane(y, at->index, Plane::Source::y_face);
+      d.y0 = d.y1 = y.p(y.face(at->index)[0]);
       d.gap_sign = at->touching ? Sign::zero : at->inside ? Sign::negative : Sign::positive;
       // A vertex on a face, with an edge of X leaving it into Y: the face's plane does not
       // separate the blocks there.

@@ -16,12 +16,7 @@
 //   1. Each vertex v of X is located against Y with exact predicates:
 //      * v strictly inside Y (below every face plane): a penetrating vertex; its face is the
 //        shortest exit (§2.2.1, eq. 4), the face of Y whose plane v is least deep below, its
-//        depth h_f / |n_f| compared exactly (ties: the lowest face index), among the faces X
-//        can have entered through: those whose plane has X's tangent cone at v on its outer
-//        side (up to cone_flush_sine); among all faces when none has. A vertex sunk into a
-//        corner is otherwise nearest a face its own block's edges cross (a wedge's crest sunk
-//        10⁻⁷ m into the keel below its joints lies nearest the base's top face, coplanar with
-//        the wedge's own, whose plane would hold the wedge up). Vertex-face. A
+//        depth h_f / |n_f| compared exactly (ties: the lowest face index). Vertex-face. A
 //        vertex inside by no more than S_tie (below) under some faces is on the boundary but for
 //        rounding: it is located as touching, by the tests below with those faces' heights 0.
 //      * otherwise the closest point p of Y to v (p = v when v is on Y's boundary) lies in the
