@@ -1,6 +1,7 @@
 // Contact constraints of two polyhedral blocks (contact_constraints.hpp has the method). The
-// work of a part pair runs in two phases: decide (exact signs only: which features touch, which plane wins) into Decision records, then construct
-// the points, normals and gaps from them in the policy's construction number type.
+// work of a part pair runs in two phases: decide (exact signs only: which features touch, which
+// plane wins) into Decision records, then construct the points, normals and gaps from them in
+// the policy's construction number type.
 
 #include "rockcontact/kernel/3d/contact_constraints.hpp"
 
@@ -11,7 +12,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <tuple>
 #include <stdexcept>
 #include <string>
 #include <utility>
