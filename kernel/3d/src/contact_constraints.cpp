@@ -216,6 +216,17 @@ Point3 loop_centroid(const Topology& t, const ConvexPolyhedron::Face& loop) {
 // face_planarity_tolerance times the block's size: parts cut from one block meet only to the
 // rounding of their vertices, and an exact test would leave their shared faces as contact planes
 // inside the block.
+// Does every vertex of `loop` (a face of `other`) lie within `flush` of face f's plane?
+template <NumberPolicy Policy>
+bool in_face_plane(const Topology& t, std::uint32_t f, const Topology& other, const ConvexPolyhedron::Face& loop,
+                   double flush) {
+  return std::all_of(loop.begin(), loop.end(), [&](std::uint32_t k) {
+    const auto height = face_height(t, f, other.p(k));
+    const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
+    return within<Policy>(height, flush) && within<Policy>(depth, flush);
+  });
+}
+
 template <NumberPolicy Policy>
 void mark_internal_faces(std::vector<Topology>& parts, double flush) {
   for (Topology& t : parts) {
@@ -236,12 +247,7 @@ void mark_internal_faces(std::vector<Topology>& parts, double flush) {
         }
         if (!above) continue;
         for (const auto& g : other.poly->faces()) {
-          const bool on_plane = std::all_of(g.begin(), g.end(), [&](std::uint32_t k) {
-            const auto height = face_height(t, f, other.p(k));
-            const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
-            return within<Policy>(height, flush) && within<Policy>(depth, flush);
-          });
-          if (on_plane && (inside_loop<Policy>(other, g, *above, centre) ||
+          if (in_face_plane<Policy>(t, f, other, g, flush) && (inside_loop<Policy>(other, g, *above, centre) ||
                            inside_loop<Policy>(t, loop, *above, loop_centroid(other, g)))) {
             t.internal[f] = true;
           }
@@ -265,12 +271,7 @@ void mark_internal_faces(std::vector<Topology>& parts, double flush) {
           const auto& other_loop = other.face(g);
           const Vec<double> m = cross(sub<double>(other.p(other_loop[0]), other.p(other_loop[1])),
                                       sub<double>(other.p(other_loop[0]), other.p(other_loop[2])));
-          const bool on_plane = std::all_of(other_loop.begin(), other_loop.end(), [&](std::uint32_t k) {
-            const auto height = face_height(t, f, other.p(k));
-            const Distance depth{[&](auto as) { return -height.numerator(as); }, height.denominator_squared};
-            return within<Policy>(height, flush) && within<Policy>(depth, flush);
-          });
-          t.continues_outer[f] = on_plane && dot(n, m) > 0.0;
+          t.continues_outer[f] = dot(n, m) > 0.0 && in_face_plane<Policy>(t, f, other, other_loop, flush);
         }
       }
     }
