@@ -113,6 +113,29 @@ BOOST_AUTO_TEST_CASE(free_spin_keeps_volume_and_rate) {
   BOOST_TEST(std::fabs(sim.blocks()[1].velocity[3] - w * ax) <= 1e-9);
 }
 
+// Seed 001 §5.2: a block may turn by at most max_rotation_deg in a step. A cube spinning at 10
+// rad/s with dt = 10 ms would turn 5.7° a step: every step taken is cut to turn at most 1°, and
+// by no more than a halving below it (the step grows back by 1.5 and is halved when it
+// overshoots, so it never falls below a third of the limit). The spin itself stays exact:
+// ω t to 1e-9 rad.
+BOOST_AUTO_TEST_CASE(a_fast_spin_is_cut_to_the_rotation_limit) {
+  Block3dSpec cube = block("cube", {0, 0, 0}, {1, 1, 1});
+  const double w = 10.0;
+  cube.velocity = {0, 0, 0, 0, 0, w};
+  Dda3dParams params;
+  params.dt = 1.0e-2;
+  params.gravity = {0, 0, 0};
+  params.max_displacement_ratio = 0.5;
+  Dda3d sim({cube}, ContactLaw3d{}, params);
+  const double limit = params.max_rotation_deg * std::numbers::pi / 180.0;
+  while (sim.time() < 0.2) {
+    sim.step();
+    BOOST_TEST(w * sim.last_step().dt <= limit * (1.0 + 1e-12));
+    BOOST_TEST(w * sim.last_step().dt >= limit / 3.0);
+  }
+  BOOST_TEST(std::fabs(sim.blocks()[0].rotation[2] - w * sim.time()) <= 1e-9);
+}
+
 // A unit cube on a fixed slab: four vertex-face constraints carry its weight, m g / 4 each, so
 // at rest the cube sinks by m g / (4 kn). Without the initial equilibrium it starts on unloaded
 // springs; the implicit step damps the bounce of the first steps, and after 0.2 s the

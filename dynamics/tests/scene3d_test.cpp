@@ -39,7 +39,7 @@ json box_block(const std::string& id, const std::string& group, std::array<doubl
 // Every field of the format given once: a fixed slab, a cube on it, a fixed two-part wall.
 json contract_scene() {
   json scene = json::parse(R"({"dimension": 3,
-   "time": {"dt": 2e-4, "duration": 0.5, "max_displacement_ratio": 0.002},
+   "time": {"dt": 2e-4, "duration": 0.5, "max_displacement_ratio": 0.002, "max_rotation_deg": 2.5},
    "gravity": [0.5, 0, -9.81],
    "materials": {"rock": {"density": 2600, "youngs_modulus": 1e10, "poisson_ratio": 0.25},
                  "soft": {"density": 1800, "youngs_modulus": 5e8, "poisson_ratio": 0.3}},
@@ -81,6 +81,7 @@ BOOST_AUTO_TEST_CASE(values_land_in_their_fields) {
   BOOST_TEST(scene.params.dt == 2e-4);
   BOOST_TEST(scene.duration == 0.5);
   BOOST_TEST(scene.params.max_displacement_ratio == 0.002);
+  BOOST_TEST(scene.params.max_rotation_deg == 2.5);
   BOOST_TEST(scene.params.gravity[0] == 0.5);
   BOOST_TEST(scene.params.gravity[1] == 0.0);
   BOOST_TEST(scene.params.gravity[2] == -9.81);
@@ -129,6 +130,7 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
   json document = contract_scene();
   for (const char* key : {"gravity", "interfaces", "output"}) document.erase(key);
   document["time"].erase("max_displacement_ratio");
+  document["time"].erase("max_rotation_deg");
   for (const char* key : {"friction_angle_deg", "cohesion", "tensile_strength", "policy"}) {
     document["contact"].erase(key);
   }
@@ -136,6 +138,7 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
   document["blocks"][1].erase("rigid");
   const dyn::Scene3d scene = dyn::parse_scene3d(document, "defaults.json");
   BOOST_TEST(scene.params.max_displacement_ratio == 0.001);
+  BOOST_TEST(scene.params.max_rotation_deg == 1.0);
   BOOST_TEST(scene.params.gravity[2] == -9.81);
   BOOST_TEST(scene.law.friction_angle_deg == 0.0);
   BOOST_TEST(scene.law.cohesion == 0.0);
@@ -185,6 +188,10 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
   }
   expect_error([](json& d) { d["time"]["max_displacement_ratio"] = not_a_number; },
                "time.max_displacement_ratio", "a number in (0, 1), got non-finite number");
+  for (const double angle : {0.0, 90.0, -1.0}) {
+    expect_error([&](json& d) { d["time"]["max_rotation_deg"] = angle; }, "time.max_rotation_deg",
+                 "expected the largest rotation of a block in a step, degrees, a number in (0, 90)");
+  }
   expect_error([](json& d) { d["blocks"][1]["material"] = "granite"; }, "blocks[1].material",
                "unknown material \"granite\"; expected one of the scene's materials (rock, soft)");
   expect_error([](json& d) { d["blocks"][2]["id"] = "slab"; }, "blocks[2].id",

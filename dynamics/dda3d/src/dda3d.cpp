@@ -35,6 +35,7 @@ using kernel::Point3;
 
 // Growth of the step after an accepted one, back towards Dda3dParams::dt.
 constexpr double step_growth = 1.5;
+constexpr double degrees_per_radian = 180.0 / std::numbers::pi;
 // Initial equilibrium (header): the inertia term's share left in the static solve, and the gap
 // (of the scene's size) up to which blocks count as resting on each other at the start.
 constexpr double settle_regularization = 1.0e-9;
@@ -169,7 +170,7 @@ double hull_area(std::vector<Eigen::Vector2d> points) {
 // midpoints in the plane, is shared equally among them. Fewer than three (a vertex, an edge on a
 // face) stand for no area.
 std::vector<double> contact_areas(const std::vector<kernel::ContactConstraint>& found) {
-  const double agree = std::cos(5.0 * std::numbers::pi / 180.0);
+  const double agree = std::cos(5.0 / degrees_per_radian);
   std::vector<double> out(found.size(), 0.0);
   std::vector<char> grouped(found.size(), 0);
   for (std::size_t i = 0; i < found.size(); ++i) {
@@ -508,6 +509,7 @@ struct Dda3d::Impl {
              const std::vector<char>* settling = nullptr) const;
   void settle();
   double largest_displacement(const Eigen::VectorXd& d) const;
+  std::pair<double, std::size_t> largest_rotation(const Eigen::VectorXd& d) const;
   void accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations, double numerical);
   void move(std::size_t i, const Eigen::Ref<const Eigen::VectorXd>& di);
   void check_energy();
@@ -524,6 +526,8 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
   check_range(std::isfinite(params.dt) && params.dt > 0.0, "time.dt", "a finite step > 0 s", params.dt);
   check_range(params.max_displacement_ratio > 0.0 && params.max_displacement_ratio < 1.0,
               "time.max_displacement_ratio", "a ratio in (0, 1)", params.max_displacement_ratio);
+  check_range(params.max_rotation_deg > 0.0 && params.max_rotation_deg < 90.0, "time.max_rotation_deg",
+              "an angle in (0, 90) degrees", params.max_rotation_deg);
   check_range(params.min_dt_ratio > 0.0 && params.min_dt_ratio < 1.0, "time.min_dt_ratio", "a ratio in (0, 1)",
               params.min_dt_ratio);
   if (params.max_open_close == 0) throw std::invalid_argument("max_open_close: expected at least 1 iteration");
@@ -1217,6 +1221,19 @@ double Dda3d::Impl::largest_displacement(const Eigen::VectorXd& d) const {
   return largest;
 }
 
+// The largest rotation of a block over the step's increments d (radians, the rotation vector's
+// length, which is the exact angle of the map the step applies) and that block's index.
+std::pair<double, std::size_t> Dda3d::Impl::largest_rotation(const Eigen::VectorXd& d) const {
+  std::pair<double, std::size_t> largest{0.0, 0};
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const Block& b = blocks[i];
+    if (b.dof == 0) continue;
+    const double angle = d.segment<3>(static_cast<Eigen::Index>(b.offset) + 3).norm();
+    if (angle > largest.first) largest = {angle, i};
+  }
+  return largest;
+}
+
 // Step 5: the blocks, their velocities, stresses and rotations, the contact list.
 void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations,
                          double numerical) {
@@ -1332,6 +1349,7 @@ void Dda3d::step() {
     s.check_penetration();
   }
   const double limit = s.params.max_displacement_ratio * s.size;
+  const double turn_limit = s.params.max_rotation_deg / degrees_per_radian;
   for (;;) {
     std::vector<Constraint> list = s.constraints;
     Eigen::VectorXd d;
@@ -1340,7 +1358,8 @@ void Dda3d::step() {
     Unsettled unsettled;
     const bool converged = s.attempt(list, d, iterations, numerical, unsettled);
     const double moved = converged ? s.largest_displacement(d) : 0.0;
-    if (converged && moved <= limit) {
+    const auto [turned, turning] = converged ? s.largest_rotation(d) : std::pair<double, std::size_t>{0.0, 0};
+    if (converged && moved <= limit && turned <= turn_limit) {
       s.accept(std::move(list), d, iterations, numerical);
       s.h = std::min(s.params.dt, step_growth * s.h);
       s.check_energy();
@@ -1349,15 +1368,20 @@ void Dda3d::step() {
     const double next = 0.5 * s.h;
     ++s.last.cuts;
     if (next < min_dt) {
-      throw Stability3dError(
-          "at t = " + number(s.time) + " s the step would shrink to " + number(next) + " s, below " +
-          number(min_dt) + " s: " +
-          (converged ? "a vertex moves " + number(moved) + " m in a step, more than max_displacement_ratio x size = " +
-                           number(limit) + " m"
-                     : unsettled.contact ? "the open-close iteration does not converge in " +
-                                               iterations_text(s.params.max_open_close) + ": " +
-                                               s.describe(unsettled)
-                                         : std::string("the solution is not finite")));
+      std::string why;
+      if (!converged) {
+        why = unsettled.contact ? "the open-close iteration does not converge in " +
+                                      iterations_text(s.params.max_open_close) + ": " + s.describe(unsettled)
+                                : std::string("the solution is not finite");
+      } else if (moved > limit) {
+        why = "a vertex moves " + number(moved) + " m in a step, more than max_displacement_ratio x size = " +
+              number(limit) + " m";
+      } else {
+        why = block_name(s.blocks[turning].spec.id) + " turns by " + number(turned * degrees_per_radian) +
+              " degrees in a step, more than max_rotation_deg = " + number(s.params.max_rotation_deg);
+      }
+      throw Stability3dError("at t = " + number(s.time) + " s the step would shrink to " + number(next) +
+                             " s, below " + number(min_dt) + " s: " + why);
     }
     s.h = next;
   }

@@ -24,7 +24,7 @@ constexpr JsonField scene_fields[] = {
     {"format", false, "\"rockcontact-scene/1\""},
     {"description", false, "a string"},
     {"dimension", true, "3"},
-    {"time", true, "an object {\"dt\", \"duration\", \"max_displacement_ratio\"}"},
+    {"time", true, "an object {\"dt\", \"duration\", \"max_displacement_ratio\", \"max_rotation_deg\"}"},
     {"gravity", false, "the gravity [gx, gy, gz] in m/s², three finite numbers"},
     {"initial_equilibrium", false,
      "true or false: settle the blocks resting at the start before the run (default true)"},
@@ -46,6 +46,7 @@ constexpr JsonField time_fields[] = {
     {"duration", true, "the simulated time in s, a finite number > 0"},
     {"max_displacement_ratio", false,
      "the largest vertex displacement of a step over the scene's size, a number in (0, 1)"},
+    {"max_rotation_deg", false, "the largest rotation of a block in a step, degrees, a number in (0, 90)"},
 };
 constexpr JsonField contact_fields[] = {
     {"law", true, "\"penalty\" (the generalized penalty contact of seed 001)"},
@@ -144,13 +145,18 @@ class Scene3dParser {
         read_scene_time(reader_, value, expected(scene_fields, "time"), time_fields);
     scene.params.dt = time.dt;
     scene.duration = time.duration;
-    if (value.contains("max_displacement_ratio")) {
-      const std::string path = "time.max_displacement_ratio";
-      const std::string_view what = expected(time_fields, "max_displacement_ratio");
-      const double ratio = reader_.positive(value.at("max_displacement_ratio"), path, what);
-      if (!(ratio < 1.0)) reader_.fail_expected(path, what, value.at("max_displacement_ratio"));
-      scene.params.max_displacement_ratio = ratio;
-    }
+    below(value, "max_displacement_ratio", 1.0, scene.params.max_displacement_ratio);
+    below(value, "max_rotation_deg", 90.0, scene.params.max_rotation_deg);
+  }
+
+  // The optional time field `name`, a number in (0, bound), into `out`.
+  void below(const json& time, const char* name, double bound, double& out) const {
+    if (!time.contains(name)) return;
+    const std::string path = std::string("time.") + name;
+    const std::string_view what = expected(time_fields, name);
+    const double x = reader_.positive(time.at(name), path, what);
+    if (!(x < bound)) reader_.fail_expected(path, what, time.at(name));
+    out = x;
   }
 
   void gravity(const json& document, Scene3d& scene) const {

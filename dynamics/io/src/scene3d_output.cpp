@@ -332,6 +332,7 @@ ordered_json run3d_summary(const Scene3d& scene, const Run3dReport& report) {
   out["time"] = report.time;
   out["dt"] = scene.params.dt;
   out["max_displacement_ratio"] = scene.params.max_displacement_ratio;
+  out["max_rotation_deg"] = scene.params.max_rotation_deg;
   // The penalties the run used, and whether "auto" chose them.
   out["kn"] = scene.law.kn;
   out["kt"] = scene.law.kt;

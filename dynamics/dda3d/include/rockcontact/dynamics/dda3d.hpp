@@ -38,10 +38,13 @@
 //      contact changes between open and closed, or a locked one gives way to sliding (the solve
 //      held it with its full stiffness), the system is re-assembled and solved again, at most
 //      Dda3dParams::max_open_close times;
-//   4. step control (§5.2, eq. 50): the step is cut (h / 2) and redone from t_n when the
-//      iteration does not converge or when a vertex moves farther than max_displacement_ratio
-//      times the scene's size (the diagonal of its bounding box at the start), and grows back by
-//      a factor 1.5 per accepted step up to Dda3dParams::dt;
+//   4. step control (§5.2, eq. 48-50): the step is cut (h / 2) and redone from t_n when the
+//      iteration does not converge, when a vertex moves farther than max_displacement_ratio
+//      times the scene's size (the diagonal of its bounding box at the start), or when a block
+//      turns by more than max_rotation_deg (1° by default, the low end of §5.2's 1-3°: the
+//      plane of a contact on the block turns with it, and the step's constant normal then errs
+//      in the normal penetration by the relative displacement times sin θ, eq. 48); it grows
+//      back by a factor 1.5 per accepted step up to Dda3dParams::dt;
 //   5. update: v_n+1 = 2 D / h - v_n (the constant-acceleration step of DDA), σ_n+1 = σ_n + C ε,
 //      every vertex moved by x -> c + u0 + R(r) (I + ε) (x - c) with the exact rotation R(r)
 //      (block_matrices3d.hpp): a spinning block keeps its volume, where the first-order map
@@ -168,6 +171,7 @@ struct Dda3dParams {
   double dt = 1.0e-3;                         // s, the largest step, finite > 0
   std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s²
   double max_displacement_ratio = 1.0e-3;     // of the scene's size per step, in (0, 1)
+  double max_rotation_deg = 1.0;              // a block's rotation per step, degrees, in (0, 90)
   std::size_t max_open_close = 30;            // open-close iterations per step before a cut, >= 1
   double min_dt_ratio = 1.0e-6;               // the step may shrink to dt times this, in (0, 1)
   bool initial_equilibrium = true;            // settle the resting blocks first (header)

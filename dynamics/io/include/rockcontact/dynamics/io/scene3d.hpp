@@ -9,7 +9,9 @@
 //    "time": {"dt": s > 0 (the largest step), "duration": s > 0,
 //             "max_displacement_ratio": 0 < r < 1 (optional, default 0.001: a step is cut when
 //                                        a vertex would move more than r times the diagonal
-//                                        of the scene's bounding box)},
+//                                        of the scene's bounding box),
+//             "max_rotation_deg": 0 < θ < 90 (optional, default 1: a step is cut when a block
+//                                  would turn by more than θ degrees, seed 001 §5.2)},
 //    "gravity": [gx, gy, gz] m/s²                     (optional, default [0, 0, -9.81])
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
 //                         "poisson_ratio": -1 < nu < 0.5}, ...},
@@ -73,7 +75,7 @@ struct Scene3d {
   ContactLaw3d law;
   bool kn_auto = false;  // law.kn is auto_normal_penalty3d's ("kn": "auto" or none)
   bool kt_auto = false;  // law.kt is law.kn / 10 ("kt": "auto" or none)
-  Dda3dParams params;  // dt, gravity, max_displacement_ratio from the scene; the rest default
+  Dda3dParams params;  // dt, gravity, max_displacement_ratio, max_rotation_deg from the scene; the rest default
   double duration = 0.0;           // s
   std::vector<std::string> track;  // ids of the tracked blocks, in the file's order
   std::size_t every = 100;         // record every `every` accepted steps

@@ -63,7 +63,7 @@ struct Run3dReport {
 };
 
 // The summary.json document of a 3D run (keys in this order): scene, description, dimension
-// (3), status, [error], steps, time, dt, max_displacement_ratio, wall_seconds,
+// (3), status, [error], steps, time, dt, max_displacement_ratio, max_rotation_deg, wall_seconds,
 // simulation_seconds, output_seconds, energy {start, end} each {kinetic, gravitational, strain,
 // contact, friction_dissipated, numerical_dissipated, total} (Energies3d, J),
 // open_close_iterations {mean, max} per accepted step, step_cuts, predicates {calls,
