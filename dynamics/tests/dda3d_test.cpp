@@ -277,6 +277,52 @@ BOOST_AUTO_TEST_CASE(cg_solves_as_ldlt) {
   BOOST_TEST(direct.blocks()[1].centroid.x > 0.1);
 }
 
+// Seed 001 §2.4, Table 1: a contact found apart whose points' relative velocity closes the gap
+// within the step starts closed. A cube 0.5 mm above the slab falling at 1 m/s (1 mm in the 1 ms
+// step) touches within the first step: its four corners are settled in the first solve, one
+// open-close iteration with all four closed (started open they need a second). The same cube
+// 5 mm up reaches nothing in the step: its corners are found (within the detection range) and
+// stay open, in one iteration.
+BOOST_AUTO_TEST_CASE(a_contact_closing_within_the_step_starts_closed) {
+  for (const auto& [lift, closed] : {std::pair{0.5e-3, std::size_t{4}}, std::pair{5e-3, std::size_t{0}}}) {
+    std::vector<Block3dSpec> blocks = cube_on_slab(lift);
+    blocks[1].velocity = {0, 0, -1.0, 0, 0, 0};
+    Dda3dParams params;
+    params.dt = 1.0e-3;
+    params.initial_equilibrium = false;
+    Dda3d sim(blocks, penalty(1.0e9, 1.0e9, 30.0), params);
+    BOOST_TEST(sim.contacts().size() >= 4u);
+    sim.step();
+    BOOST_TEST(sim.last_step().dt == 1.0e-3);
+    BOOST_TEST(sim.last_step().open_close_iterations == 1u);
+    BOOST_TEST(sim.last_step().closed == closed);
+  }
+}
+
+// A contact closed by the prediction has not touched: it holds no tension. The cube 0.5 mm above
+// the slab falling at 1 m/s is closed by Table 1, but an upward acceleration of 3000 m/s² turns
+// it back within the step: free flight ends it 0.5 mm higher than it started, 1 mm from the
+// slab. With a tensile strength of 10 MPa (2.5 MN per corner against the spring's 1 MN at 1
+// mm), a spring allowed to pull would hold the cube down; the step ends with every contact
+// open and the cube where free flight puts it (to rounding, 1e-12 m).
+BOOST_AUTO_TEST_CASE(a_contact_closed_by_the_prediction_holds_no_tension) {
+  std::vector<Block3dSpec> blocks = cube_on_slab(0.5e-3);
+  blocks[1].velocity = {0, 0, -1.0, 0, 0, 0};
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  params.gravity = {0, 0, 3000.0};
+  params.initial_equilibrium = false;
+  ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
+  law.tensile_strength = 1.0e7;
+  Dda3d sim(blocks, law, params);
+  const double z0 = sim.blocks()[1].centroid.z;
+  sim.step();
+  BOOST_TEST(sim.last_step().dt == 1.0e-3);
+  BOOST_TEST(sim.last_step().closed == 0u);
+  const double h = 1.0e-3;
+  BOOST_TEST(std::fabs(sim.blocks()[1].centroid.z - (z0 - h + 0.5 * 3000.0 * h * h)) <= 1e-12);
+}
+
 // A cube dropped 0.05 m onto the slab: kinetic + gravitational + contact springs + friction +
 // the integrator's dissipation stays at its initial value (zero). Each term is computed from its
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of
@@ -341,18 +387,19 @@ BOOST_AUTO_TEST_CASE(monitor_stops_a_block_sinking_through_another) {
 }
 
 // An open-close iteration that does not converge names the contact it could not settle. A cube
-// 1 mm above the slab falling at 2 m/s meets it within the step: its contacts start open, the
-// first solve drives it into the slab and they close. Allowed one iteration and no step cut
-// (min_dt_ratio 0.6 > 1/2), the step stops with Stability3dError naming both blocks, the
-// contact's place (a bottom corner of the cube, the later block) and what to change.
+// released at rest 2 µm above the slab: its contacts start open (at rest nothing closes them,
+// Table 1), but gravity takes it ½ g h² = 4.9 µm down in the 1 ms step, so the first solve
+// drives it into the slab and they close. Allowed one iteration and no step cut (min_dt_ratio
+// 0.6 > 1/2), the step stops with Stability3dError naming both blocks, the contact's place (a
+// bottom corner of the cube, the later block) and what to change.
 BOOST_AUTO_TEST_CASE(an_unsettled_open_close_iteration_names_its_contact) {
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.max_open_close = 1;
   params.min_dt_ratio = 0.6;
-  auto blocks = cube_on_slab(1.0e-3);
-  blocks[1].velocity = {0, 0, -2.0, 0, 0, 0};
-  Dda3d sim(blocks, penalty(1.0e9, 1.0e8, 30.0), params);
+  params.initial_equilibrium = false;
+  const double lift = 2.0e-6;
+  Dda3d sim(cube_on_slab(lift), penalty(1.0e9, 1.0e8, 30.0), params);
   std::string stopped;
   try {
     sim.step();
@@ -363,14 +410,14 @@ BOOST_AUTO_TEST_CASE(an_unsettled_open_close_iteration_names_its_contact) {
   BOOST_TEST(stopped.find("the open-close iteration does not converge in 1 iteration:") != std::string::npos);
   BOOST_TEST(stopped.find("between block 'slab' and block 'cube'") != std::string::npos);
   BOOST_TEST(stopped.find("lower kn (1e+09 N/m)") != std::string::npos);
-  // The contact point: a bottom corner of the cube, (±0.5, ±0.5, 0.001) (printed to 6 digits).
+  // The contact point: a bottom corner of the cube, (±0.5, ±0.5, lift) (printed to 6 digits).
   const std::size_t at = stopped.find(" at (");
   BOOST_TEST_REQUIRE(at != std::string::npos);
   double x = 0, y = 0, z = 0;
   BOOST_TEST_REQUIRE(std::sscanf(stopped.c_str() + at, " at (%lf, %lf, %lf) m on the latter", &x, &y, &z) == 3);
   BOOST_TEST(std::fabs(std::fabs(x) - 0.5) <= 1e-9);
   BOOST_TEST(std::fabs(std::fabs(y) - 0.5) <= 1e-9);
-  BOOST_TEST(std::fabs(z - 1.0e-3) <= 1e-9);
+  BOOST_TEST(std::fabs(z - lift) <= 1e-12);
 }
 
 // Two equal free cubes that start 0.1 mm into each other face-on, no gravity: every corner of

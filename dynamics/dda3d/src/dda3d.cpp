@@ -432,6 +432,9 @@ struct Constraint {
   detail::ContactUpdate3d update;   // of the last solve
   double slip_work = 0.0;           // friction work of the last solve, J
   double start_energy = 0.0;        // held by its springs at the start of the step, J
+  // Found apart but closed by Table 1's prediction (pair_constraints) and not yet through a step:
+  // its springs hold no energy, and it carries no tension (it has not touched).
+  bool closing = false;
   double dashpot_normal = 0.0;      // c_n and c_t of its dashpots, N s/m (dda3d.hpp)
   double dashpot_tangential = 0.0;
   double damping_work = 0.0;        // taken by them over the last solve, J
@@ -616,6 +619,7 @@ void Dda3d::Impl::settle() {
   std::vector<Constraint> list = constraints;
   for (Constraint& k : list) {
     k.state.mode = k.kinematics.gap <= resting ? detail::ContactMode::locked : detail::ContactMode::open;
+    k.closing = false;
     k.law.gap_tolerance = open_close_tolerance * size;
   }
   Eigen::VectorXd d;
@@ -903,6 +907,8 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.dashpot_tangential = dashpot_tangential;
     k.kinematics = detail::contact_kinematics({c.point_cp, point(ba.moments.centroid), ba.dof},
                                               {c.point_tp, point(bb.moments.centroid), bb.dof}, c.normal, area);
+    const Eigen::Vector3d velocity = detail::relative_motion(k.kinematics, ba.velocity, bb.velocity);
+    bool inherited = true;
     if (const auto it = previous.find(k.key); it != previous.end() && continues(*it->second, c)) {
       k.state = it->second->state;
     } else if (const Constraint* from = c.gap <= 0.0 ? transferred_from(vanished, c) : nullptr) {
@@ -911,7 +917,15 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
       k.state.shear -= k.state.shear.dot(vec(c.normal)) * vec(c.normal);
       k.state.offset = std::min(0.0, k.kinematics.gap - (from->update.gap - from->state.offset));
     } else {
-      k.state.mode = c.gap > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
+      inherited = false;
+      // §2.4 method (1), Table 1: a new constraint starts closed (locked) when it penetrates or
+      // its points' relative velocity closes the gap within the step, d0 + h n . v0 <= 0, and
+      // open otherwise: an impact predicted so is settled in the first solve instead of the
+      // second. (Locked whatever the tangential velocity: the first iteration's Mohr-Coulomb
+      // test turns it to sliding if its spring gives way, and the spring starts at zero.)
+      const double predicted = k.kinematics.gap + h * velocity.dot(k.kinematics.normal);
+      k.state.mode = c.gap > 0.0 && predicted > 0.0 ? detail::ContactMode::open : detail::ContactMode::locked;
+      k.closing = c.gap > 0.0 && k.state.mode == detail::ContactMode::locked;
       // Born penetrating inside an overlap the other constraints of the pair resist (its
       // features came into contact within it, as a crossing that moved onto new edges): it
       // resists further penetration only (contact_terms3d.hpp). At the start, an overlap
@@ -924,17 +938,17 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     // geometry of this step, re-detected, is the judge, as after a solve) starts open: its
     // spring would otherwise pull the blocks back in the first iteration and count energy
     // it never stored.
-    if (k.state.mode != detail::ContactMode::open &&
+    if (inherited && k.state.mode != detail::ContactMode::open &&
         pair.kn * (k.kinematics.gap - k.state.offset - pair.gap_tolerance) > pair.tensile_strength * k.kinematics.area) {
       k.state = detail::ContactState3d{};
     }
-    k.start_energy = detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
+    k.start_energy =
+        k.closing ? 0.0 : detail::spring_energy(k.law, k.state.mode, k.state.offset, k.kinematics.gap, k.state.shear);
     k.update.gap = k.kinematics.gap;  // until a solve: what energies() reads of a fresh list
     if (k.state.sliding_direction.isZero()) {
       // §2.3 eq. 6: the sliding direction assumed first is that of the points' relative
       // velocity; the open-close iteration takes it from the solution after that (eq. 8).
-      const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, ba.velocity, bb.velocity);
-      if (const auto v = kernel::sliding_direction(c.normal, point(relative))) k.state.sliding_direction = vec(*v);
+      if (const auto v = kernel::sliding_direction(c.normal, point(velocity))) k.state.sliding_direction = vec(*v);
     }
     out.push_back(std::move(k));
   }
@@ -1137,7 +1151,9 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       Constraint& k = list[static_cast<std::size_t>(c)];
       const auto di = increments(blocks[k.a]);
       const auto dj = increments(blocks[k.b]);
-      k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
+      detail::ContactLaw3d judged = k.law;
+      if (k.closing) judged.tensile_strength = 0.0;
+      k.update = detail::evaluate_contact(k.kinematics, k.state, judged, di, dj);
       const bool was_closed = k.state.mode != detail::ContactMode::open;
       const bool is_closed = k.update.mode != detail::ContactMode::open;
       // §4.3: the iteration converges when no contact changes between open and closed and no
@@ -1247,6 +1263,7 @@ void Dda3d::Impl::accept(std::vector<Constraint> list, const Eigen::VectorXd& d,
   }
   for (Constraint& k : list) {
     detail::commit_step(k.state, k.update);
+    k.closing = false;
     friction_dissipated += k.slip_work;
     damping_dissipated += k.damping_work;
   }
@@ -1426,7 +1443,7 @@ Energies3d Dda3d::Impl::energies() const {
     }
   }
   for (const Constraint& k : s.constraints) {
-    e.contact += detail::spring_energy(k.law, k.state.mode, k.state.offset, k.update.gap, k.state.shear);
+    if (!k.closing) e.contact += detail::spring_energy(k.law, k.state.mode, k.state.offset, k.update.gap, k.state.shear);
   }
   e.friction_dissipated = s.friction_dissipated;
   e.damping_dissipated = s.damping_dissipated;

@@ -24,8 +24,11 @@
 //      each part and each block's vertex). A constraint identified by its pair and its two
 //      features keeps its mode and tangential spring; one whose features changed (a crossing
 //      past an edge's end) takes them over from the vanished constraint of the pair within a
-//      step's largest motion and 15° of its normal (contact transfer); any other starts open
-//      when its gap is positive, locked otherwise;
+//      step's largest motion and 15° of its normal (contact transfer); any other starts as
+//      §2.4's Table 1 predicts from its gap d0 and its points' relative velocity v0: locked
+//      when d0 + h n . v0 <= 0 (it penetrates, or closes within the step), open otherwise. One
+//      closed by the prediction at d0 > 0 holds no spring energy and no tension until it has
+//      been through a step;
 //   2. the global equation (eq. 13), one sparse symmetric system in the unknowns of every movable
 //      block (fixed blocks have none):
 //        (2 M / h² + K_e + K_c) D = F_g + (2 / h) M v_n - V σ_n + F_c
