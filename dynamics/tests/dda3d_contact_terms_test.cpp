@@ -649,6 +649,46 @@ BOOST_AUTO_TEST_CASE(revised_point_is_the_crossing_point) {
   BOOST_TEST((vec(touch->point_cp) - Vector3d(1, 2, 3)).norm() == 0.0);
 }
 
+// §5.1 eq. 44-46 on random crossings: two edges through p_cp (cp) and p_tp = p_cp + d0 n (tp),
+// n = e_cp x e_tp, the blocks translating so that the step ends 0.02 to 1.02 m deep. The revised
+// points are material points of each edge (on its line) that meet at the fraction t, with the
+// gap d0 kept, and the spring's stretch at the end is (1 - t) P Δr. Same scale as above: 1e-14 m.
+BOOST_AUTO_TEST_CASE(revised_crossing_is_where_the_edges_meet) {
+  const std::uint64_t seed = 11;
+  std::cout << "crossing revision: seed " << seed << '\n';
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vector3d e_cp = random_unit(rng);
+    Vector3d e_tp = random_unit(rng);
+    if (e_cp.cross(e_tp).norm() < 0.1) continue;  // the engine drops nearly parallel crossings
+    const Vector3d n = e_cp.cross(e_tp).normalized();
+    const double d0 = 0.05 + 0.2 * (unit(rng) + 1);
+    const Vector3d p_cp(unit(rng), unit(rng), unit(rng));
+    const Vector3d p_tp = p_cp + d0 * n;
+    const Vector3d u_cp(unit(rng), unit(rng), unit(rng));
+    const Vector3d w(unit(rng), unit(rng), unit(rng));
+    const Vector3d u_tp = u_cp + w - w.dot(n) * n - (d0 + 0.02 + 0.5 * (unit(rng) + 1)) * n;
+    const Vector3d relative = u_tp - u_cp;
+    const auto r = d::revise_edge_edge(point(p_cp), point(p_tp), n, e_cp, e_tp, relative);
+    BOOST_TEST_REQUIRE(r.has_value());
+    const double t = r->fraction;
+    BOOST_TEST(t > 0.0);
+    BOOST_TEST(t < 1.0);
+    const Vector3d q_cp = vec(r->point_cp), q_tp = vec(r->point_tp);
+    BOOST_TEST(((q_tp + t * u_tp) - (q_cp + t * u_cp)).norm() <= 1e-14);
+    BOOST_TEST((q_cp - p_cp).cross(e_cp).norm() <= 1e-14);
+    BOOST_TEST((q_tp - p_tp).cross(e_tp).norm() <= 1e-14);
+    BOOST_TEST(std::fabs((q_tp - q_cp).dot(n) - d0) <= 1e-14);
+    const Vector3d tangential_motion = relative - relative.dot(n) * n;
+    BOOST_TEST((r->shear + tangential_motion - (1 - t) * tangential_motion).norm() <= 1e-14);
+  }
+  const Vector3d n(0, 0, 1), x(1, 0, 0), y(0, 1, 0);
+  // Not a crossing: the step ends apart; parallel edges.
+  BOOST_TEST(!d::revise_edge_edge({0, 0, 0}, {0, 0, 0.1}, n, x, y, {0, 0, -0.05}).has_value());
+  BOOST_TEST(!d::revise_edge_edge({0, 0, 0}, {0, 0, 0.1}, n, x, x, {0.3, 0, -0.2}).has_value());
+}
+
 BOOST_AUTO_TEST_CASE(bad_laws_are_refused_naming_the_field) {
   const auto message = [](d::ContactLaw3d law) -> std::string {
     try {

@@ -323,6 +323,42 @@ BOOST_AUTO_TEST_CASE(a_contact_closed_by_the_prediction_holds_no_tension) {
   BOOST_TEST(std::fabs(sim.blocks()[1].centroid.z - (z0 - h + 0.5 * 3000.0 * h * h)) <= 1e-12);
 }
 
+// Seed 001 §5.1: a contact that closes within the step stretches its tangential spring by the
+// motion after the touch only. The cube 0.5 mm above the slab, falling at 1 m/s and moving at
+// 0.5 m/s along x (no gravity), touches about halfway through the 1 ms step. With kt = 10³ N/m
+// (its force changes the cube's motion by 10⁻¹⁰ m in the step) the cube moves v_x h = 0.5 mm
+// along x, and each of its four locked corners, which end the step at gap d1, carries
+//   kt (1 - t) v_x h,   t = d0 / (d0 - d1),
+// t the fraction of the step at which the corner reaches the slab (eq. 43), to 10⁻⁵ of it: the
+// engine takes t from the solve in which the corner first closed, and the springs' small moment
+// on the cube moves the corners' end gaps in the next solve by a few 10⁻⁶ of the step's motion.
+// Without the revision each would carry kt v_x h, about twice as much.
+BOOST_AUTO_TEST_CASE(a_contact_closing_within_the_step_stretches_from_its_touch) {
+  const double lift = 0.5e-3, vx = 0.5, h = 1.0e-3, kt = 1.0e3;
+  std::vector<Block3dSpec> blocks = cube_on_slab(lift);
+  blocks[1].velocity = {vx, 0, -1.0, 0, 0, 0};
+  Dda3dParams params;
+  params.dt = h;
+  params.gravity = {0, 0, 0};
+  params.initial_equilibrium = false;
+  Dda3d sim(blocks, penalty(1.0e9, kt, 30.0), params);
+  sim.step();
+  BOOST_TEST(sim.last_step().dt == h);
+  BOOST_TEST(std::fabs(sim.blocks()[1].centroid.x - vx * h) <= 1e-9);
+  std::size_t locked = 0;
+  for (const Contact3dState& c : sim.contacts()) {
+    if (c.mode == ContactMode3d::open) continue;
+    ++locked;
+    BOOST_TEST((c.mode == ContactMode3d::stick));
+    BOOST_TEST_REQUIRE(c.gap < 0.0);
+    const double t = lift / (lift - c.gap);
+    BOOST_TEST(t > 0.3);
+    BOOST_TEST(t < 0.9);
+    BOOST_TEST(std::fabs(c.tangential_force - kt * (1.0 - t) * vx * h) <= 1e-5 * kt * (1.0 - t) * vx * h);
+  }
+  BOOST_TEST(locked == 4u);
+}
+
 // A cube dropped 0.05 m onto the slab: kinetic + gravitational + contact springs + friction +
 // the integrator's dissipation stays at its initial value (zero). Each term is computed from its
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of

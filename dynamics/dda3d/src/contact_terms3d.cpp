@@ -219,20 +219,55 @@ double spring_energy(const ContactLaw3d& law, ContactMode mode, double offset, d
   return 0.5 * law.kn * stretch * stretch + 0.5 * law.kt * shear.squaredNorm();
 }
 
+namespace {
+
+// Eq. 43: the fraction of the step at which a contact open at its start (d0 >= 0) and penetrating
+// at its end (d1 < 0) closes, under a linear relative motion; nullopt when it does not cross.
+std::optional<double> crossing_fraction(const Vector3d& p_cp, const Vector3d& p_tp, const Vector3d& normal,
+                                        const Vector3d& relative) {
+  const double d0 = (p_tp - p_cp).dot(normal);  // eq. 20
+  const double d1 = d0 + normal.dot(relative);  // eq. 21
+  if (!(d0 >= 0.0 && d1 < 0.0)) return std::nullopt;
+  return d0 / (d0 - d1);
+}
+
+}  // namespace
+
 std::optional<RevisedContact3d> revise_vertex_face(const kernel::Point3& point_cp,
                                                    const kernel::Point3& point_tp,
                                                    const Eigen::Vector3d& normal,
                                                    kernel::BlockRole vertex,
                                                    const Eigen::Vector3d& relative) {
   const Vector3d p_cp = vec(point_cp), p_tp = vec(point_tp);
-  const double d0 = (p_tp - p_cp).dot(normal);  // eq. 20
-  const double d1 = d0 + normal.dot(relative);  // eq. 21
-  if (!(d0 >= 0.0 && d1 < 0.0)) return std::nullopt;
+  const std::optional<double> t = crossing_fraction(p_cp, p_tp, normal, relative);
+  if (!t) return std::nullopt;
   RevisedContact3d out;
-  out.fraction = d0 / (d0 - d1);                   // eq. 43
+  out.fraction = *t;
   const Vector3d moved = out.fraction * relative;  // eq. 41-42, the motion up to the crossing
   out.point_cp = vertex == kernel::BlockRole::cp ? point_cp : point(p_tp + moved);
   out.point_tp = vertex == kernel::BlockRole::tp ? point_tp : point(p_cp - moved);
+  out.shear = tangential(vec(out.point_tp) - vec(out.point_cp), normal);
+  return out;
+}
+
+std::optional<RevisedContact3d> revise_edge_edge(const kernel::Point3& point_cp, const kernel::Point3& point_tp,
+                                                 const Eigen::Vector3d& normal, const Eigen::Vector3d& e_cp,
+                                                 const Eigen::Vector3d& e_tp, const Eigen::Vector3d& relative) {
+  const Vector3d p_cp = vec(point_cp), p_tp = vec(point_tp);
+  const std::optional<double> t = crossing_fraction(p_cp, p_tp, normal, relative);
+  if (!t) return std::nullopt;
+  // Eq. 45: P Δr = a e_cp + b e_tp, by the normal equations of the two edges' directions in the
+  // plane.
+  const Vector3d u = tangential(e_cp, normal), w = tangential(e_tp, normal), s = tangential(relative, normal);
+  const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w);
+  const double det = uu * ww - uw * uw;
+  if (!(det > 0.0)) return std::nullopt;
+  const double a = (ww * u.dot(s) - uw * w.dot(s)) / det;
+  const double b = (uu * w.dot(s) - uw * u.dot(s)) / det;
+  RevisedContact3d out;
+  out.fraction = *t;
+  out.point_cp = point(p_cp + out.fraction * a * u);  // eq. 46
+  out.point_tp = point(p_tp - out.fraction * b * w);
   out.shear = tangential(vec(out.point_tp) - vec(out.point_cp), normal);
   return out;
 }

@@ -205,4 +205,16 @@ std::optional<RevisedContact3d> revise_vertex_face(const kernel::Point3& point_c
                                                    kernel::BlockRole vertex,
                                                    const Eigen::Vector3d& relative);
 
+// §5.1, eq. 44-46: the same for a crossing of cp's edge (direction e_cp) and tp's (e_tp), whose
+// closest points point_cp, point_tp lie on the line of the normal. The tangential relative
+// motion P Δr = a e_cp + b e_tp (eq. 44-45, the edges span the contact plane) moves the
+// crossing along both edges; at the fraction t it is at
+//   p_cp* = p_cp + t a e_cp,   p_tp* = p_tp - t b e_tp                        (eq. 46)
+// (material points of each block at the start of the step), with the same gap d0, and the stretch
+// starts from P (p_tp* - p_cp*) = -t P Δr (eq. 47), as for a vertex. nullopt unless d0 >= 0 > d1
+// or when the edges are parallel.
+std::optional<RevisedContact3d> revise_edge_edge(const kernel::Point3& point_cp, const kernel::Point3& point_tp,
+                                                 const Eigen::Vector3d& normal, const Eigen::Vector3d& e_cp,
+                                                 const Eigen::Vector3d& e_tp, const Eigen::Vector3d& relative);
+
 }  // namespace rockcontact::dynamics::detail

@@ -59,6 +59,10 @@ constexpr double merge_ratio = 1.0e-3;
 // Contact transfer (detect): the largest angle between the normals of a vanished constraint and
 // the new one that continues it, radians (15 degrees).
 constexpr double transfer_angle = std::numbers::pi / 12.0;
+// §5.1's revision (revise) is applied when it moves the contact points by more than this fraction
+// of the scene's size: a contact closing head-on (no tangential motion) keeps its points, and its
+// step is not solved again for a rounding.
+constexpr double revision_floor = 1.0e-9;
 
 std::string number(double x) {
   char text[32];
@@ -364,13 +368,15 @@ std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Blo
 // carry the contact.
 constexpr double parallel_edges = 1.0e-3;
 
+// The unit direction of the edge feature `f` of block b.
+Eigen::Vector3d edge_direction(const Block& b, const kernel::Feature& f) {
+  const ConvexPolyhedron& part = b.parts[f.part];
+  const auto [i, j] = part.edges()[f.index];
+  return Eigen::Vector3d(vec(part[j]) - vec(part[i])).normalized();
+}
+
 bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
-  const auto direction = [](const Block& b, const kernel::Feature& f) {
-    const ConvexPolyhedron& part = b.parts[f.part];
-    const auto [i, j] = part.edges()[f.index];
-    return Eigen::Vector3d(vec(part[j]) - vec(part[i])).normalized();
-  };
-  return direction(cp, c.cp_feature).cross(direction(tp, c.tp_feature)).norm() < parallel_edges;
+  return edge_direction(cp, c.cp_feature).cross(edge_direction(tp, c.tp_feature)).norm() < parallel_edges;
 }
 
 // A closed edge-edge constraint with the blocks where they are now: the closest points of the two
@@ -435,6 +441,7 @@ struct Constraint {
   // Found apart but closed by Table 1's prediction (pair_constraints) and not yet through a step:
   // its springs hold no energy, and it carries no tension (it has not touched).
   bool closing = false;
+  bool revised = false;  // §5.1's revision was tried on it in this step (attempt)
   double dashpot_normal = 0.0;      // c_n and c_t of its dashpots, N s/m (dda3d.hpp)
   double dashpot_tangential = 0.0;
   double damping_work = 0.0;        // taken by them over the last solve, J
@@ -508,6 +515,8 @@ struct Dda3d::Impl {
   bool attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std::size_t& iterations, double& numerical,
                Unsettled& unsettled) const;
   std::string describe(const Unsettled& u) const;
+  bool revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
+              const Eigen::Ref<const Eigen::VectorXd>& dj) const;
   void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
              const std::vector<char>* settling = nullptr) const;
   void settle();
@@ -1161,8 +1170,11 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // contact does not have (a step accepted so would stop a frictionless block for every new
       // contact). A sliding contact that locks again is taken over for the next iteration
       // without forcing one: it held the friction force, which the locked spring starts from.
-      const bool this_changed = was_closed != is_closed || (k.state.mode == detail::ContactMode::locked &&
-                                                            k.update.mode == detail::ContactMode::sliding);
+      bool this_changed = was_closed != is_closed || (k.state.mode == detail::ContactMode::locked &&
+                                                      k.update.mode == detail::ContactMode::sliding);
+      // §5.1: a contact that closes within the step (open at its start, or closed ahead by
+      // Table 1) moves to where its features meet; the system is solved again with it there.
+      if (is_closed && (!was_closed || k.closing) && !k.revised) this_changed = revise(k, di, dj) || this_changed;
       changed_now[static_cast<std::size_t>(c)] = this_changed;
       changes[static_cast<std::size_t>(c)] += this_changed;
       changed = changed || this_changed;
@@ -1207,6 +1219,36 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
   unsettled.changed_last = static_cast<std::size_t>(std::count(changed_now.begin(), changed_now.end(), 1));
   unsettled.contacts = list.size();
   return false;
+}
+
+// Seed 001 §5.1 on a constraint whose first solve closed it within the step: a vertex-face or
+// edge-edge contact found apart at d0 >= 0 and penetrating at d1 < 0 gets the contact points where
+// its features meet under a linear relative motion (contact_terms3d.hpp, eq. 41-46) and its
+// tangential spring starts from -t P Δr (eq. 47), so that only the motion after the touch
+// stretches it. True when the constraint changed (the points moved by more than
+// revision_floor of the scene's size); tried once per step.
+bool Dda3d::Impl::revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
+                         const Eigen::Ref<const Eigen::VectorXd>& dj) const {
+  k.revised = true;
+  const kernel::ContactConstraint& c = k.geometry;
+  const Eigen::Vector3d& n = k.kinematics.normal;
+  const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, di, dj);
+  std::optional<detail::RevisedContact3d> r;
+  if (c.type == kernel::ConstraintType::vertex_face) {
+    r = detail::revise_vertex_face(c.point_cp, c.point_tp, n, c.entering, relative);
+  } else if (c.type == kernel::ConstraintType::edge_edge) {
+    r = detail::revise_edge_edge(c.point_cp, c.point_tp, n, edge_direction(blocks[k.a], c.cp_feature),
+                                 edge_direction(blocks[k.b], c.tp_feature), relative);
+  }
+  if (!r || r->shear.norm() <= revision_floor * size) return false;
+  const Block &ba = blocks[k.a], &bb = blocks[k.b];
+  k.geometry.point_cp = r->point_cp;
+  k.geometry.point_tp = r->point_tp;
+  k.kinematics = detail::contact_kinematics({r->point_cp, point(ba.moments.centroid), ba.dof},
+                                            {r->point_tp, point(bb.moments.centroid), bb.dof}, c.normal,
+                                            k.kinematics.area);
+  k.state.shear = r->shear;
+  return true;
 }
 
 // The error's account of the contact an open-close iteration could not settle.
