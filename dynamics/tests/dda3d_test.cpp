@@ -359,6 +359,54 @@ BOOST_AUTO_TEST_CASE(a_contact_closing_within_the_step_stretches_from_its_touch)
   BOOST_TEST(locked == 4u);
 }
 
+// Seed 001 §4.3 (1): a vertex at a block's edge takes the plane its motion leaves by. A
+// tetrahedron whose lowest vertex hangs 0.1 mm above the top edge (x = 1, z = 1) of a fixed unit
+// cube, the rest of it beyond the cube's side (x > 1), falls at 1 m/s and drifts 0.05 m/s
+// towards the cube (no gravity, frictionless, kn = 10⁷ N/m). At the start the vertex is above the
+// top face's plane and on the side face's, so the shortest exit chooses the top. After the step
+// the vertex would be 0.9 mm below the top and only 0.05 mm inside the side: it leaves by the
+// side face, and the contact pushes the block along +x only, so its centroid keeps its
+// vertical velocity (-1 m/s, to rounding). Kept on the top's plane it would be pushed up by
+// 0.9 mm of spring.
+BOOST_AUTO_TEST_CASE(a_vertex_driven_past_an_edge_leaves_by_the_side_face) {
+  using rockcontact::kernel::ConvexPolyhedron;
+  const std::vector<Point3> v = {{1.0, 0.5, 1.0 + 1e-4}, {1.3, 0.3, 1.1}, {1.3, 0.7, 1.1}, {1.1, 0.5, 1.4}};
+  const auto outward = [&](std::vector<std::uint32_t> f) {  // the triangle turned to face away from the fourth vertex
+    const std::uint32_t other = 6 - f[0] - f[1] - f[2];
+    const auto d = [&](std::size_t i, std::size_t j) {
+      return std::array<double, 3>{v[j].x - v[i].x, v[j].y - v[i].y, v[j].z - v[i].z};
+    };
+    const auto a = d(f[0], f[1]), b = d(f[0], f[2]), c = d(f[0], other);
+    const double volume = c[0] * (a[1] * b[2] - a[2] * b[1]) + c[1] * (a[2] * b[0] - a[0] * b[2]) +
+                          c[2] * (a[0] * b[1] - a[1] * b[0]);
+    if (volume > 0.0) std::swap(f[1], f[2]);
+    return f;
+  };
+  Block3dSpec tetra;
+  tetra.id = "tetra";
+  tetra.parts = {ConvexPolyhedron::make("tetra", v, {outward({0, 1, 2}), outward({0, 1, 3}), outward({0, 2, 3}),
+                                                     outward({1, 2, 3})})};
+  tetra.material = {density, 1.0e10, 0.25};
+  tetra.rigid = true;
+  tetra.velocity = {-0.05, 0, -1.0, 0, 0, 0};
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  params.gravity = {0, 0, 0};
+  params.initial_equilibrium = false;
+  Dda3d sim({block("base", {0, 0, 0}, {1, 1, 1}, true), tetra}, penalty(1.0e7, 1.0e6, 0.0), params);
+  sim.step();
+  BOOST_TEST(sim.last_step().dt == 1.0e-3);
+  std::size_t closed = 0;
+  for (const Contact3dState& c : sim.contacts()) {
+    if (c.mode == ContactMode3d::open) continue;
+    ++closed;
+    BOOST_TEST(std::fabs(c.normal.x - 1.0) <= 1e-12);
+  }
+  BOOST_TEST(closed == 1u);
+  BOOST_TEST(std::fabs(sim.blocks()[1].velocity[2] + 1.0) <= 1e-9);
+  BOOST_TEST(sim.blocks()[1].velocity[0] > -0.05);
+}
+
 // A cube dropped 0.05 m onto the slab: kinetic + gravitational + contact springs + friction +
 // the integrator's dissipation stays at its initial value (zero). Each term is computed from its
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of

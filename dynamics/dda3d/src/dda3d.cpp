@@ -63,6 +63,10 @@ constexpr double transfer_angle = std::numbers::pi / 12.0;
 // of the scene's size: a contact closing head-on (no tangential motion) keeps its points, and its
 // step is not solved again for a rounding.
 constexpr double revision_floor = 1.0e-9;
+// §4.3's new choice of plane (replane) takes a candidate whose end gap exceeds the present one's
+// by more than this fraction of the scene's size: at an exact touch the candidates tie, and the
+// kernel's tie-break stands.
+constexpr double replane_margin = 1.0e-9;
 
 std::string number(double x) {
   char text[32];
@@ -442,6 +446,7 @@ struct Constraint {
   // its springs hold no energy, and it carries no tension (it has not touched).
   bool closing = false;
   bool revised = false;  // §5.1's revision was tried on it in this step (attempt)
+  bool replaned = false;  // §4.3's new choice of plane was made for it in this step (attempt)
   double dashpot_normal = 0.0;      // c_n and c_t of its dashpots, N s/m (dda3d.hpp)
   double dashpot_tangential = 0.0;
   double damping_work = 0.0;        // taken by them over the last solve, J
@@ -517,6 +522,8 @@ struct Dda3d::Impl {
   std::string describe(const Unsettled& u) const;
   bool revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
               const Eigen::Ref<const Eigen::VectorXd>& dj) const;
+  bool replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
+               const Eigen::Ref<const Eigen::VectorXd>& dj) const;
   void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
              const std::vector<char>* settling = nullptr) const;
   void settle();
@@ -1175,6 +1182,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // §5.1: a contact that closes within the step (open at its start, or closed ahead by
       // Table 1) moves to where its features meet; the system is solved again with it there.
       if (is_closed && (!was_closed || k.closing) && !k.revised) this_changed = revise(k, di, dj) || this_changed;
+      if (is_closed && !k.replaned) this_changed = replane(k, di, dj) || this_changed;
       changed_now[static_cast<std::size_t>(c)] = this_changed;
       changes[static_cast<std::size_t>(c)] += this_changed;
       changed = changed || this_changed;
@@ -1248,6 +1256,45 @@ bool Dda3d::Impl::revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>&
                                             {r->point_tp, point(bb.moments.centroid), bb.dof}, c.normal,
                                             k.kinematics.area);
   k.state.shear = r->shear;
+  return true;
+}
+
+// Seed 001 §4.3 (1) on a closed vertex-edge or vertex-vertex constraint with more than one
+// candidate plane (the kernel's list, §4.2): the shortest exit (§2.2.1) run again with the
+// points where the solve moved them. The candidate whose plane the end points are least deep
+// below, by more than replane_margin of the scene's size beyond the present one, becomes its
+// plane: a vertex found just above a block's edge and driven down past it leaves by the side
+// face, not by the top its gap at the start chose. Made at most once per step, so the iteration
+// cannot swing between two planes; true when it changed the plane.
+bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
+                          const Eigen::Ref<const Eigen::VectorXd>& dj) const {
+  const std::vector<kernel::CandidatePlane>& candidates = k.geometry.candidates;
+  if (candidates.size() < 2) return false;
+  const Eigen::Vector3d end =
+      vec(k.geometry.point_tp) - vec(k.geometry.point_cp) + detail::relative_motion(k.kinematics, di, dj);
+  double best = end.dot(k.kinematics.normal) + replane_margin * size;
+  const kernel::CandidatePlane* chosen = nullptr;
+  for (const kernel::CandidatePlane& c : candidates) {
+    if (const double exit = end.dot(vec(c.normal)); exit > best) best = exit, chosen = &c;
+  }
+  if (chosen == nullptr) return false;
+  k.replaned = true;
+  kernel::ContactConstraint& g = k.geometry;
+  const Eigen::Vector3d n = vec(chosen->normal);
+  g.normal = chosen->normal;
+  g.plane = chosen->source;
+  g.gap = (vec(g.point_tp) - vec(g.point_cp)).dot(n);
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  g.tangent1 = point(t1);
+  g.tangent2 = point(n.cross(t1));
+  const Block &ba = blocks[k.a], &bb = blocks[k.b];
+  k.kinematics = detail::contact_kinematics({g.point_cp, point(ba.moments.centroid), ba.dof},
+                                            {g.point_tp, point(bb.moments.centroid), bb.dof}, g.normal,
+                                            k.kinematics.area);
+  k.normal_in_tp = bb.rotation.transpose() * n;
+  k.state.shear -= k.state.shear.dot(n) * n;
+  const Eigen::Vector3d slide = k.state.sliding_direction - k.state.sliding_direction.dot(n) * n;
+  k.state.sliding_direction = slide.norm() > 0.0 ? Eigen::Vector3d(slide.normalized()) : Eigen::Vector3d::Zero();
   return true;
 }
 
