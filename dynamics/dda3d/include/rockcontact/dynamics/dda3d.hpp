@@ -40,7 +40,14 @@
 //      (contact_terms3d.hpp: Table 2 with the project's elastoplastic tangential spring); while a
 //      contact changes between open and closed, or a locked one gives way to sliding (the solve
 //      held it with its full stiffness), the system is re-assembled and solved again, at most
-//      Dda3dParams::max_open_close times;
+//      Dda3dParams::max_open_close times. Within it (§4.3's additional operations, once per
+//      constraint and step, each forcing another solve when it changes the constraint):
+//      a vertex-face or edge-edge contact that closes within the step (found apart, penetrating
+//      after the solve) moves to where its features meet under a linear relative motion, its
+//      tangential spring starting from -t P Δr (§5.1, eq. 41-47: only the motion after the
+//      touch stretches it); and a closed vertex-edge or vertex-vertex contact re-runs the
+//      shortest exit over the kernel's candidate planes with the solve's points (§4.3 (1)), so
+//      a vertex driven past an edge leaves by the face it went through;
 //   4. step control (§5.2, eq. 48-50): the step is cut (h / 2) and redone from t_n when the
 //      iteration does not converge, when a vertex moves farther than max_displacement_ratio
 //      times the scene's size (the diagonal of its bounding box at the start), or when a block
