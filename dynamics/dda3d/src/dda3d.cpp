@@ -67,6 +67,8 @@ constexpr double revision_floor = 1.0e-9;
 // by more than this fraction of the scene's size: at an exact touch the candidates tie, and the
 // kernel's tie-break stands.
 constexpr double replane_margin = 1.0e-9;
+// Vertices of a block's parts closer than this fraction of its size are one corner (corners_of).
+constexpr double corner_tolerance = 1.0e-9;
 
 std::string number(double x) {
   char text[32];
@@ -114,14 +116,31 @@ Eigen::Vector3d doubled_vector_area(const ConvexPolyhedron& part, const ConvexPo
   return sum;
 }
 
-// A vertex of one block of a pair: its block's role, its part and its index there.
-using ContactVertex = std::pair<kernel::BlockRole, std::pair<std::uint32_t, std::uint32_t>>;
+// A corner of a block: a part and the index of its vertex there. The parts of a non-convex
+// block share corners (each part meeting at a corner has its own copy of the vertex).
+using Corner = std::pair<std::uint32_t, std::uint32_t>;
 
-// The vertices among a constraint's two features.
-std::vector<ContactVertex> vertices_of(const kernel::ContactConstraint& c) {
-  std::vector<ContactVertex> out;
-  for (const auto& [side, f] : {std::pair{kernel::BlockRole::cp, c.cp_feature}, std::pair{kernel::BlockRole::tp, c.tp_feature}}) {
-    if (f.kind == kernel::Feature::Kind::vertex) out.push_back({side, {f.part, f.index}});
+// corners[p][v]: the corner of the parts' vertex v of part p, the first (part, index) at the same
+// place, within corner_tolerance of the block's size (the parts' copies of a corner are each
+// rounded from the planes that cut them).
+std::vector<std::vector<Corner>> corners_of(const std::vector<ConvexPolyhedron>& parts, double size) {
+  std::vector<std::pair<Eigen::Vector3d, Corner>> all;
+  std::vector<std::vector<Corner>> out(parts.size());
+  for (std::uint32_t p = 0; p < parts.size(); ++p) {
+    for (std::uint32_t v = 0; v < parts[p].vertices().size(); ++v) all.push_back({vec(parts[p][v]), {p, v}});
+    out[p].resize(parts[p].vertices().size());
+  }
+  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first.x() < y.first.x(); });
+  const double tolerance = corner_tolerance * size;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    Corner first = all[i].second;
+    for (std::size_t j = i; j-- > 0 && all[i].first.x() - all[j].first.x() <= tolerance;) {
+      if ((all[i].first - all[j].first).norm() <= tolerance) first = std::min(first, all[j].second);
+    }
+    for (std::size_t j = i + 1; j < all.size() && all[j].first.x() - all[i].first.x() <= tolerance; ++j) {
+      if ((all[i].first - all[j].first).norm() <= tolerance) first = std::min(first, all[j].second);
+    }
+    out[all[i].second.first][all[i].second.second] = first;
   }
   return out;
 }
@@ -142,9 +161,24 @@ struct Block {
 
   Eigen::MatrixXd mass_matrix;          // dof x dof, of the current moments
   double size = 0.0;                    // m, the cube root of its volume
+  std::vector<std::vector<Corner>> corners;  // corners_of its parts (they move as one)
 
   void refresh_mass_matrix() { mass_matrix = detail::mass_matrix(moments, mass).topLeftCorner(dof, dof); }
 };
+
+// A vertex of one block of a pair: its block's role and its corner.
+using ContactVertex = std::pair<kernel::BlockRole, Corner>;
+
+// The vertices among a constraint's two features, as corners of their blocks: the same corner
+// whichever part of a non-convex block the kernel found it in.
+std::vector<ContactVertex> vertices_of(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
+  std::vector<ContactVertex> out;
+  for (const auto& [side, f] : {std::pair{kernel::BlockRole::cp, c.cp_feature}, std::pair{kernel::BlockRole::tp, c.tp_feature}}) {
+    const Block& block = side == kernel::BlockRole::cp ? cp : tp;
+    if (f.kind == kernel::Feature::Kind::vertex) out.push_back({side, block.corners[f.part][f.index]});
+  }
+  return out;
+}
 
 // The area of the convex hull of points in a plane (Andrew's monotone chain, shoelace formula).
 double hull_area(std::vector<Eigen::Vector2d> points) {
@@ -447,6 +481,7 @@ struct Constraint {
   bool closing = false;
   bool revised = false;  // §5.1's revision was tried on it in this step (attempt)
   bool replaned = false;  // §4.3's new choice of plane was made for it in this step (attempt)
+  bool shared = false;    // another constraint of its pair is at its position (pair_constraints)
   double dashpot_normal = 0.0;      // c_n and c_t of its dashpots, N s/m (dda3d.hpp)
   double dashpot_tangential = 0.0;
   double damping_work = 0.0;        // taken by them over the last solve, J
@@ -573,6 +608,7 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
     if (!(b.moments.volume > 0.0)) throw std::invalid_argument(name + ": zero volume");
     b.mass = m.density * b.moments.volume;
     b.size = std::cbrt(b.moments.volume);
+    b.corners = corners_of(b.parts, b.size);
     b.dof = spec.fixed ? 0 : spec.rigid ? detail::rigid_dof3d : detail::dof3d;
     b.refresh_mass_matrix();
     b.offset = unknowns;
@@ -769,7 +805,7 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
   for (const Constraint& k : earlier) {
     if (k.state.mode == detail::ContactMode::open) continue;
     continuing.insert(k.key);
-    for (const ContactVertex& v : vertices_of(k.geometry)) supported.insert(v);
+    for (const ContactVertex& v : vertices_of(blocks[a], blocks[b], k.geometry)) supported.insert(v);
     if (k.geometry.type == kernel::ConstraintType::edge_edge) {
       if (auto c = held_crossing(blocks[a], blocks[b], k.key, k.geometry, k.update.gap, range)) {
         crossings.push_back(std::move(*c));
@@ -783,7 +819,7 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
     }
   }
   for (const auto& entry : held) {
-    for (const ContactVertex& v : vertices_of(entry.second)) held_vertices.insert(v);
+    for (const ContactVertex& v : vertices_of(blocks[a], blocks[b], entry.second)) held_vertices.insert(v);
   }
   for (const kernel::ContactConstraint& c : crossings) crossing_keys.insert(key_of(a, b, blocks[a], blocks[b], c));
   std::erase_if(found, [&](const kernel::ContactConstraint& c) {
@@ -792,7 +828,7 @@ void Dda3d::Impl::hold_contacts(std::size_t a, std::size_t b, std::span<const Co
     if (const std::optional<Hold> hold = own_hold(blocks[a], blocks[b], c); hold && held.contains(*hold)) return true;
     if (c.gap > 0.0) return false;
     const bool is_new = !continuing.contains(key);
-    for (const ContactVertex& v : vertices_of(c)) {
+    for (const ContactVertex& v : vertices_of(blocks[a], blocks[b], c)) {
       if (held_vertices.contains(v) || (is_new && supported.contains(v))) return true;
     }
     return false;
@@ -900,6 +936,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
   });
   hold_contacts(a, b, earlier, found);
   const std::vector<double> areas = contact_areas(found);
+  const double same_position = std::min(range, merge_ratio * std::min(ba.size, bb.size));
   const detail::ContactLaw3d pair = pair_law(ba, bb);
   std::vector<ConstraintKey> keys;
   for (const kernel::ContactConstraint& c : found) keys.push_back(key_of(a, b, ba, bb, c));
@@ -917,6 +954,9 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
     k.key = keys[i];
     k.holds = holds_of(ba, bb, c);
     k.law = pair;
+    k.shared = std::any_of(found.begin(), found.end(), [&](const kernel::ContactConstraint& other) {
+      return &other != &c && (vec(other.point_tp) - vec(c.point_tp)).norm() <= same_position;
+    });
     const double area = areas[i];
     k.normal_in_tp = bb.rotation.transpose() * vec(c.normal);
     k.dashpot_normal = dashpot_normal;
@@ -1260,8 +1300,11 @@ bool Dda3d::Impl::revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>&
 }
 
 // Seed 001 §4.3 (1) on a closed vertex-edge or vertex-vertex constraint with more than one
-// candidate plane (the kernel's list, §4.2): the shortest exit (§2.2.1) run again with the
-// points where the solve moved them. The candidate whose plane the end points are least deep
+// candidate plane (the kernel's list, §4.2) and alone at its position: the shortest exit
+// (§2.2.1) run again with the points where the solve moved them. (Where a pair has more than one
+// constraint at a position, a concave edge or corner of a non-convex block, each holds its own
+// part's plane, §2.2.2: moved onto a sibling's plane, one would count that plane twice and leave
+// the other empty; a wedge released at touch gained energy so at its crest.) The candidate whose plane the end points are least deep
 // below, by more than replane_margin of the scene's size beyond the present one, becomes its
 // plane: a vertex found just above a block's edge and driven down past it leaves by the side
 // face, not by the top its gap at the start chose. Made at most once per step, so the iteration
@@ -1269,7 +1312,7 @@ bool Dda3d::Impl::revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>&
 bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
                           const Eigen::Ref<const Eigen::VectorXd>& dj) const {
   const std::vector<kernel::CandidatePlane>& candidates = k.geometry.candidates;
-  if (candidates.size() < 2) return false;
+  if (candidates.size() < 2 || k.shared) return false;
   const Eigen::Vector3d end =
       vec(k.geometry.point_tp) - vec(k.geometry.point_cp) + detail::relative_motion(k.kinematics, di, dj);
   double best = end.dot(k.kinematics.normal) + replane_margin * size;
