@@ -407,6 +407,38 @@ BOOST_AUTO_TEST_CASE(a_vertex_driven_past_an_edge_leaves_by_the_side_face) {
   BOOST_TEST(sim.blocks()[1].velocity[0] > -0.05);
 }
 
+// A vertex that lies beyond a face's edge, on the face's plane, is not held there. A unit cube
+// rests on a fixed slab whose edge (x = 0.2) its front face overhangs by 5 mm. Its front corners
+// are nearest to the slab's edge, 5 mm away along the slab's top plane: found with that plane,
+// their gap would be 0 and they would carry a share of the weight from where there is no rock.
+// They stay open; the weight is carried where the cube is on the slab, by its back corners and
+// the crossings of its bottom edges with the slab's edge (x = 0.2), and after a step from the
+// initial equilibrium their forces sum to it (to 10⁻⁹). The cube's centroid is 0.29 m behind
+// the edge: it stands, turning by less than 10⁻⁶ rad in 0.1 s.
+BOOST_AUTO_TEST_CASE(a_vertex_beyond_a_faces_edge_is_not_held_on_its_plane) {
+  const double edge = 0.2, overhang = 5.0e-3;
+  const std::vector<Block3dSpec> blocks = {block("slab", {-2, -2, -1}, {edge, 2, 0}, true),
+                                           block("cube", {edge + overhang - 1.0, -0.5, 0}, {edge + overhang, 0.5, 1})};
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  Dda3d sim(blocks, penalty(1.0e9, 1.0e8, 30.0), params);
+  sim.step();
+  double carried = 0.0;
+  std::size_t front = 0;
+  for (const Contact3dState& c : sim.contacts()) {
+    if (c.point.x > edge + 1e-6) {
+      ++front;
+      BOOST_TEST((c.mode == ContactMode3d::open));
+    }
+    if (c.mode != ContactMode3d::open) carried += c.normal_force * c.normal.z;
+  }
+  BOOST_TEST(front >= 2u);
+  const double weight = density * 1.0 * g;
+  BOOST_TEST(std::fabs(carried - weight) <= 1e-9 * weight);
+  for (int i = 0; i < 100; ++i) sim.step();
+  BOOST_TEST(std::fabs(sim.blocks()[1].rotation[1]) <= 1e-6);
+}
+
 // A cube dropped 0.05 m onto the slab: kinetic + gravitational + contact springs + friction +
 // the integrator's dissipation stays at its initial value (zero). Each term is computed from its
 // own law (dda3d.hpp), so the sum holds exactly when the solution satisfies the scheme; 1e-9 of

@@ -413,6 +413,33 @@ Eigen::Vector3d edge_direction(const Block& b, const kernel::Feature& f) {
   return Eigen::Vector3d(vec(part[j]) - vec(part[i])).normalized();
 }
 
+// A vertex-edge or vertex-vertex constraint whose two points lie apart along its plane by more
+// than `tolerance`: a vertex that has slid along a face's plane past the face's edge (a wedge's
+// daylight vertex past the slope's free face). Its gap along the plane's normal (about zero) is
+// not its distance from the other block, and a spring on it would hold the vertex on the plane
+// beyond the face, as far as the detection range: a wedge that had slid out of its slope was
+// still carried there, where it should tip over the free face's edge.
+bool apart_along_plane(const kernel::ContactConstraint& c, double tolerance) {
+  if (c.type != kernel::ConstraintType::vertex_edge && c.type != kernel::ConstraintType::vertex_vertex) return false;
+  const Eigen::Vector3d apart = vec(c.point_tp) - vec(c.point_cp), n = vec(c.normal);
+  return (apart - apart.dot(n) * n).norm() > tolerance;
+}
+
+// Such a constraint on the line of its two points (the kernel's plane for a vertex contact
+// whose candidate planes all fail, contact_constraints.hpp): its gap is their distance, so it
+// closes only when the vertex comes back to the other block's edge or vertex.
+void to_contact_line(kernel::ContactConstraint& c) {
+  const Eigen::Vector3d apart = vec(c.point_tp) - vec(c.point_cp);
+  const Eigen::Vector3d n = apart.normalized();
+  c.normal = point(n);
+  c.plane = {kernel::PlaneSource::Kind::contact_line, 0, 0};
+  c.candidates.clear();
+  c.gap = apart.norm();
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  c.tangent1 = point(t1);
+  c.tangent2 = point(n.cross(t1));
+}
+
 bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
   return edge_direction(cp, c.cp_feature).cross(edge_direction(tp, c.tp_feature)).norm() < parallel_edges;
 }
@@ -934,6 +961,9 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
   std::erase_if(found, [&](const kernel::ContactConstraint& c) {
     return c.gap < -range || (c.type == kernel::ConstraintType::edge_edge && nearly_parallel(ba, bb, c));
   });
+  for (kernel::ContactConstraint& c : found) {
+    if (apart_along_plane(c, merge_ratio * std::min(ba.size, bb.size))) to_contact_line(c);
+  }
   hold_contacts(a, b, earlier, found);
   const std::vector<double> areas = contact_areas(found);
   const double same_position = std::min(range, merge_ratio * std::min(ba.size, bb.size));

@@ -12,7 +12,11 @@
 //      face of a non-convex block and the part it is in would push it out through its far
 //      side; the neighbouring part's constraint holds it), and edge-edge crossings of edges
 //      within 10⁻³ (sine) of parallel (the vertex contacts at the ends of their overlap carry
-//      it). The contact list remembers (§4.2): a constraint closed at the previous step keeps
+//      it). A vertex-edge or vertex-vertex constraint whose points lie apart along its plane
+//      by more than 10⁻³ of the smaller block's size (a vertex slid along a face's plane past
+//      the face's edge, as a wedge's daylight vertex past the free face) takes the line of its
+//      points as its normal and their distance as its gap: on the plane its gap would be zero,
+//      and the vertex would be carried beyond the rock. The contact list remembers (§4.2): a constraint closed at the previous step keeps
 //      its plane while its features stay in contact (a vertex over its face, two vertices
 //      within the range, a crossing on both edges), replacing the kernel's shortest exit, which
 //      next to a concave edge of a non-convex block can name a face the vertex never came
