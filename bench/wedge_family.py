@@ -8,7 +8,9 @@ point: a fixed, non-convex base and the tetrahedral wedge) with their references
   factor of safety: `rockcontact safety-factor SCENE --block wedge -o -` (strength reduction,
                     trials of 1 s) against Hoek & Bray's limit equilibrium on the same joints;
   slide (FS < 1):   `rockcontact run SCENE` for the scene's 1 s, the wedge centroid's displacement
-                    along the line of intersection (tracks.csv) against 1/2 g sin(psi_i) (1 - FS) t^2.
+                    along the line of intersection (tracks.csv) against 1/2 g sin(psi_i) (1 - FS) t^2,
+                    up to the case's slide_time_s (wedge_slide_time: 1 s, or less where the wedge
+                    would reach the free face and tip over its edge).
 
 Prints Markdown tables and the worst errors; exits 1 when a command failed or a factor of safety
 is only a bound (status stable_at_max or slides_at_min). Standard library only.
@@ -71,7 +73,9 @@ def joints(case):
 def slide(case, tracks):
     """The wedge centroid's displacement along the line of intersection, the time, the reference."""
     rows = [r for r in csv.DictReader(open(tracks)) if r["block"] == "wedge"]
-    first, last = rows[0], rows[-1]
+    # Up to the case's slide_time_s (wedge_slide_time: before the wedge reaches the free face).
+    window = float(rows[0]["t"]) + case["reference"]["slide_time_s"] + 1e-9
+    first, last = rows[0], [r for r in rows if float(r["t"]) <= window][-1]
     line = case["reference"]["intersection"]
     moved = sum((float(last[k]) - float(first[k])) * line[i] for i, k in enumerate("xyz"))
     t = float(last["t"]) - float(first["t"])
@@ -107,8 +111,8 @@ def slides(args, cases, work, failures):
     sliding = [(k, c) for k, c in enumerate(cases) if c["reference"]["factor_of_safety"] < 1]
     if not sliding:
         return []
-    print(f"\nSlide along the line of intersection, FS < 1 (`rockcontact run`, 1 s): "
-          f"1/2 g sin(psi_i) (1 - FS) t^2\n")
+    print(f"\nSlide along the line of intersection, FS < 1 (`rockcontact run`, 1 s, measured up to t: 1 s or "
+          f"0.8 of the time the centroid takes to reach the free face): 1/2 g sin(psi_i) (1 - FS) t^2\n")
     print("| case | Hoek–Bray FS | plunge | t (s) | reference (m) | DDA (m) | error | wall s |")
     print("|---|---|---|---|---|---|---|---|")
     errors = []

@@ -47,7 +47,8 @@ ordered_json reference_json(const dyn::WedgeCase& c) {
           {"intersection", {r.intersection.x, r.intersection.y, r.intersection.z}},
           {"plunge_deg", r.plunge_deg},
           {"trend_deg", r.trend_deg},
-          {"slide_acceleration_m_s2", dyn::wedge_slide_acceleration(r, dyn::wedge_family_gravity)}};
+          {"slide_acceleration_m_s2", dyn::wedge_slide_acceleration(r, dyn::wedge_family_gravity)},
+          {"slide_time_s", dyn::wedge_slide_time(c, r, dyn::wedge_family_gravity)}};
 }
 
 }  // namespace

@@ -209,6 +209,29 @@ BOOST_AUTO_TEST_CASE(the_scene_holds_the_closed_form_tetrahedron) {
   }
 }
 
+// The slide window: at wedge_slide_time the centroid of every sliding wedge of the family at
+// φ = 20°, moved ½ a t² along the line of intersection, is still behind the free face (y > 0),
+// at 1 - 0.8² = 36 % of its distance or more where the window is shorter than 1 s; the window is
+// 1 s for a wedge that stays.
+BOOST_AUTO_TEST_CASE(a_slide_is_compared_while_the_wedge_is_behind_the_free_face) {
+  std::size_t shortened = 0;
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 10, 20.0)) {
+    const dyn::WedgeLimitEquilibrium r = dyn::wedge_factor_of_safety(c.a, c.b, 1.0);
+    const double t = dyn::wedge_slide_time(c, r, 9.81);
+    const dyn::WedgeCorners k = dyn::wedge_corners(c);
+    const double y = (k.crest.y + k.on_a.y + k.on_b.y + k.daylight.y) / 4.0;
+    const double moved = 0.5 * dyn::wedge_slide_acceleration(r, 9.81) * t * t;
+    const double y_then = y + moved * r.intersection.y;
+    BOOST_TEST(y_then > 0.0);
+    if (r.factor_of_safety >= 1.0) BOOST_TEST(t == 1.0);
+    if (t < 1.0) {
+      ++shortened;
+      BOOST_TEST(y_then == 0.36 * y, boost::test_tools::tolerance(1e-9));
+    }
+  }
+  BOOST_TEST(shortened >= 1u);
+}
+
 // The slide reference a = g sin ψ_i (1 − FS) is the net force along the line of intersection
 // per unit mass: the equilibrium W (0, 0, −1) + N_A n_A + N_B n_B + S i = 0 solved here for the
 // reactions and the shear S (Cramer's rule), the friction tan φ (N_A + N_B) against S.

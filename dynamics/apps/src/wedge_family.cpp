@@ -189,6 +189,15 @@ double wedge_slide_acceleration(const WedgeLimitEquilibrium& reference, double g
   return g * std::sin(reference.plunge_deg * radians_per_degree) * (1.0 - reference.factor_of_safety);
 }
 
+double wedge_slide_time(const WedgeCase& c, const WedgeLimitEquilibrium& reference, double g, double at_most) {
+  const double a = wedge_slide_acceleration(reference, g);
+  const WedgeCorners k = wedge_corners(c);
+  const double centroid_y = (k.crest.y + k.on_a.y + k.on_b.y + k.daylight.y) / 4.0;
+  const double to_face = centroid_y / std::abs(reference.intersection.y);  // along the line, m
+  if (a <= 0.0) return at_most;
+  return std::min(at_most, 0.8 * std::sqrt(2.0 * to_face / a));
+}
+
 nlohmann::ordered_json wedge_cut_document(const WedgeCase& c) {
   const Point3 lo = wedge_family_region_min, hi = wedge_family_region_max;
   return {{"dimension", 3},

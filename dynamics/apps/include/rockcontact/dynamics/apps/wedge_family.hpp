@@ -105,6 +105,14 @@ double wedge_volume(const WedgeCase& c);
 // std::invalid_argument for another mode: the wedge would leave a plane.
 double wedge_slide_acceleration(const WedgeLimitEquilibrium& reference, double g);
 
+// s: how long a slide from rest may be compared with ½ a t² (a = wedge_slide_acceleration):
+// `at_most`, or for a fast slide 0.8 of the time the wedge's centroid takes to reach the free
+// face (y = 0). The reference takes the joints as unbounded; the slope's end there, and a wedge
+// whose centroid has slid past the free face's edge is no longer carried behind it and tips over
+// the edge (the 1.9 m³ wedge of the family at φ = 20° reaches it in 0.55 s). `at_most` for a
+// wedge that stays (a = 0). Throws what wedge_slide_acceleration throws.
+double wedge_slide_time(const WedgeCase& c, const WedgeLimitEquilibrium& reference, double g, double at_most = 1.0);
+
 struct WedgeSceneParams {
   double kn = 1.0e10;       // N/m per constraint, finite > 0; kt = kn / 10
   double dt = 1.0e-4;       // s, the scene's time.dt, finite > 0
