@@ -18,6 +18,7 @@ is only a bound (status stable_at_max or slides_at_min). Standard library only.
     python3 bench/wedge_family.py --seed 1 --count 10 --phi 40
     python3 bench/wedge_family.py --seed 1 --count 5 --phi 20 --kn 1e10 --dt 1e-4
     python3 bench/wedge_family.py --seed 1 --count 10 --phi 40 --kn auto
+    python3 bench/wedge_family.py --seed 1 --count 10 --phi 20 --kn auto --only slides
 
 The same seed gives the same wedges at every friction angle.
 """
@@ -46,6 +47,7 @@ def arguments():
     p.add_argument("--exe", default=str(ROOT / "build" / "rockcontact"), help="the rockcontact executable")
     p.add_argument("--scenes-exe", help="wedge_family_scenes (default: bench/ beside --exe)")
     p.add_argument("--keep", help="write the scenes and runs here instead of a temporary directory")
+    p.add_argument("--only", choices=["fs", "slides"], help="run only the factors of safety or only the slides")
     return p.parse_args()
 
 
@@ -151,8 +153,8 @@ def main() -> int:
                 (work / case["scene"]).write_text(json.dumps(scene, indent=1))
         print(f"Wedge family: seed {args.seed}, {len(cases)} cases (dynamics/apps/wedge_family.hpp)\n")
         failures = []
-        fs_errors = safety_factors(args, cases, work, failures)
-        slide_errors = slides(args, cases, work, failures)
+        fs_errors = safety_factors(args, cases, work, failures) if args.only != "slides" else []
+        slide_errors = slides(args, cases, work, failures) if args.only != "fs" else []
     print()
     if fs_errors:
         worst = max(fs_errors)

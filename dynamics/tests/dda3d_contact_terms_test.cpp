@@ -592,6 +592,36 @@ BOOST_AUTO_TEST_CASE(locked_and_sliding) {
   BOOST_TEST(state.shear == u.shear);
 }
 
+namespace {
+
+// The blocks' translations over a step for the §5.1 tests: u_cp at random, and u_tp with a
+// tangential part and a normal part that ends the step 0.02 to 1.02 m past a contact d0 apart.
+std::pair<Vector3d, Vector3d> closing_motion(std::mt19937_64& rng, const Vector3d& n, double d0) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Vector3d u_cp(unit(rng), unit(rng), unit(rng));
+  const Vector3d w(unit(rng), unit(rng), unit(rng));
+  return {u_cp, u_cp + w - w.dot(n) * n - (d0 + 0.02 + 0.5 * (unit(rng) + 1)) * n};
+}
+
+// What every §5.1 revision keeps (to 1e-14 m, a few roundings of ~1 m inputs): the crossing is
+// within the step, the revised points meet at it, the gap is d0, and the stretch the spring
+// starts from leaves (1 - t) of the tangential motion in it at the end of the step.
+void check_revision(const d::RevisedContact3d& r, const Vector3d& u_cp, const Vector3d& u_tp, const Vector3d& n,
+                    double d0) {
+  const double t = r.fraction;
+  BOOST_TEST(t > 0.0);
+  BOOST_TEST(t < 1.0);
+  const Vector3d q_cp = vec(r.point_cp), q_tp = vec(r.point_tp);
+  BOOST_TEST(((q_tp + t * u_tp) - (q_cp + t * u_cp)).norm() <= 1e-14);
+  BOOST_TEST(std::fabs((q_tp - q_cp).dot(n) - d0) <= 1e-14);
+  const Vector3d relative = u_tp - u_cp;
+  const Vector3d tangential_motion = relative - relative.dot(n) * n;
+  BOOST_TEST((r.shear + tangential_motion - (1 - t) * tangential_motion).norm() <= 1e-14);
+  BOOST_TEST(std::fabs(r.shear.dot(n)) <= 1e-14);
+}
+
+}  // namespace
+
 // §5.1 on a vertex crossing a tilted face while both blocks translate (a linear relative motion):
 // the revised face point lies on the face's plane at the start, the vertex meets that material
 // point of the face block at the fraction t of the step, and the gap does not change; the
@@ -611,29 +641,15 @@ BOOST_AUTO_TEST_CASE(revised_point_is_the_crossing_point) {
       // The face point is the vertex's projection on the face's plane.
       const Vector3d p_cp = vertex == BlockRole::cp ? face - d0 * n : face;
       const Vector3d p_tp = vertex == BlockRole::cp ? face : face + d0 * n;
-      const Vector3d u_cp(unit(rng), unit(rng), unit(rng));
-      // A tangential part, and a normal part that ends the step 0.02 to 1.02 m into the face.
-      const Vector3d w(unit(rng), unit(rng), unit(rng));
-      const Vector3d u_tp = u_cp + w - w.dot(n) * n - (d0 + 0.02 + 0.5 * (unit(rng) + 1)) * n;
-      const Vector3d relative = u_tp - u_cp;
-      const double d1 = d0 + n.dot(relative);
-      BOOST_TEST_REQUIRE(d1 < 0.0);
-      const auto r = d::revise_vertex_face(point(p_cp), point(p_tp), n, vertex, relative);
+      const auto [u_cp, u_tp] = closing_motion(rng, n, d0);
+      const auto r = d::revise_vertex_face(point(p_cp), point(p_tp), n, vertex, u_tp - u_cp);
       BOOST_TEST_REQUIRE(r.has_value());
-      const double t = r->fraction;
-      BOOST_TEST(t > 0.0);
-      BOOST_TEST(t < 1.0);
+      check_revision(*r, u_cp, u_tp, n, d0);
       const Vector3d q_cp = vec(r->point_cp), q_tp = vec(r->point_tp);
-      BOOST_TEST(((q_tp + t * u_tp) - (q_cp + t * u_cp)).norm() <= 1e-14);
       const Vector3d vertex_point = vertex == BlockRole::cp ? q_cp : q_tp;
       const Vector3d face_point = vertex == BlockRole::cp ? q_tp : q_cp;
       BOOST_TEST((vertex_point - (vertex == BlockRole::cp ? p_cp : p_tp)).norm() == 0.0);
       BOOST_TEST(std::fabs((face_point - face).dot(n)) <= 1e-14);
-      BOOST_TEST(std::fabs((q_tp - q_cp).dot(n) - d0) <= 1e-14);
-      const Vector3d tangential_motion = relative - relative.dot(n) * n;
-      const Vector3d stretch = r->shear + tangential_motion;
-      BOOST_TEST((stretch - (1 - t) * tangential_motion).norm() <= 1e-14);
-      BOOST_TEST(std::fabs(r->shear.dot(n)) <= 1e-14);
     }
   }
   const Vector3d n(0, 0, 1);
@@ -666,22 +682,12 @@ BOOST_AUTO_TEST_CASE(revised_crossing_is_where_the_edges_meet) {
     const double d0 = 0.05 + 0.2 * (unit(rng) + 1);
     const Vector3d p_cp(unit(rng), unit(rng), unit(rng));
     const Vector3d p_tp = p_cp + d0 * n;
-    const Vector3d u_cp(unit(rng), unit(rng), unit(rng));
-    const Vector3d w(unit(rng), unit(rng), unit(rng));
-    const Vector3d u_tp = u_cp + w - w.dot(n) * n - (d0 + 0.02 + 0.5 * (unit(rng) + 1)) * n;
-    const Vector3d relative = u_tp - u_cp;
-    const auto r = d::revise_edge_edge(point(p_cp), point(p_tp), n, e_cp, e_tp, relative);
+    const auto [u_cp, u_tp] = closing_motion(rng, n, d0);
+    const auto r = d::revise_edge_edge(point(p_cp), point(p_tp), n, e_cp, e_tp, u_tp - u_cp);
     BOOST_TEST_REQUIRE(r.has_value());
-    const double t = r->fraction;
-    BOOST_TEST(t > 0.0);
-    BOOST_TEST(t < 1.0);
-    const Vector3d q_cp = vec(r->point_cp), q_tp = vec(r->point_tp);
-    BOOST_TEST(((q_tp + t * u_tp) - (q_cp + t * u_cp)).norm() <= 1e-14);
-    BOOST_TEST((q_cp - p_cp).cross(e_cp).norm() <= 1e-14);
-    BOOST_TEST((q_tp - p_tp).cross(e_tp).norm() <= 1e-14);
-    BOOST_TEST(std::fabs((q_tp - q_cp).dot(n) - d0) <= 1e-14);
-    const Vector3d tangential_motion = relative - relative.dot(n) * n;
-    BOOST_TEST((r->shear + tangential_motion - (1 - t) * tangential_motion).norm() <= 1e-14);
+    check_revision(*r, u_cp, u_tp, n, d0);
+    BOOST_TEST((vec(r->point_cp) - p_cp).cross(e_cp).norm() <= 1e-14);
+    BOOST_TEST((vec(r->point_tp) - p_tp).cross(e_tp).norm() <= 1e-14);
   }
   const Vector3d n(0, 0, 1), x(1, 0, 0), y(0, 1, 0);
   // Not a crossing: the step ends apart; parallel edges.
