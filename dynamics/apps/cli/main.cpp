@@ -592,6 +592,7 @@ std::string default_scenes_dir() {
 // Options of the commands that go over the directory of paper scenes (validate, report).
 struct SceneSetArgs {
   bool quick = false;
+  bool wedge_family = false;  // validate only
   std::string out;
   std::string scenes = default_scenes_dir();
 };
@@ -606,6 +607,7 @@ int run_validate(const SceneSetArgs& options) {
   dyn::ValidationOptions validation;
   validation.scenes_dir = options.scenes;
   validation.quick = options.quick;
+  validation.wedge_family = options.wedge_family;
   validation.out_dir = options.out;
   if (stderr_is_terminal()) {
     validation.on_scene = [](const std::string& scene) {
@@ -632,6 +634,9 @@ void add_validate(CLI::App& app, int& exit_status) {
       "validate", "Run the paper's scenes and compare each with its reference (exit 3 on a FAIL)");
   add_scene_set_options(sub, *options);
   sub->add_option("-o,--out", options->out, "Write each run's outputs into DIR/<scene>/");
+  sub->add_flag("--wedge-family", options->wedge_family,
+                "Also the generated wedges against Hoek & Bray at kn auto and 10x it (about 15 minutes on 2 "
+                "cores; not with --quick)");
   sub->callback([options, &exit_status] { exit_status = run_validate(*options); });
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <exception>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -11,6 +13,7 @@
 #include <utility>
 
 #include "rockcontact/dynamics/apps/safety_factor.hpp"
+#include "rockcontact/dynamics/apps/wedge_family.hpp"
 #include "rockcontact/dynamics/apps/wedge_limit_equilibrium.hpp"
 #include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
@@ -100,6 +103,7 @@ class Validator {
   // The full duration, or the quick one under --quick.
   double duration(double full, double quick_run) const { return options_.quick ? quick_run : full; }
   bool quick() const { return options_.quick; }
+  bool wedge_family() const { return options_.wedge_family; }
 
   SceneRun run(const Scene& scene, const std::string& name,
                std::function<void(const Dda2d&)> observer) const {
@@ -761,6 +765,117 @@ void wedge3d(const Validator& v, std::vector<ValidationRow>& rows) {
                         std::chrono::duration<double>(clock::now() - start).count()));
 }
 
+// Issue 29's reference family (wedge_family.hpp): wedges never seen here, generated from seed 1
+// on the user's path (cut, then the scene), against Hoek & Bray's closed form, at the default
+// penalty (kn = auto_normal_penalty3d, 10 E L of the wedge) and at ten times it, kt = kn / 10,
+// dt = 10⁻⁴ s (the family's scenes), four rows:
+//   factor of safety  the worst relative error over the first 10 wedges at φ = 40° (safety_factor,
+//                     as `rockcontact safety-factor`), within 0.5 %;
+//   slide             the worst relative error over the first 5 of the family that cannot stand
+//                     at φ = 20° (FS < 1): the wedge's displacement along the line of
+//                     intersection from rest against ½ g sin ψ_i (1 − FS) t², within 1 %, at
+//                     t = wedge_slide_time (1 s, or less where the wedge would reach the free
+//                     face and tip over its edge).
+// The cases run side by side on the threads (each engine then runs on one). Only with
+// ValidationOptions::wedge_family (`validate --wedge-family`), not under --quick: about 16
+// minutes on 2 cores.
+struct FamilyCase {
+  double reference = nan, measured = nan;
+  std::string error;  // the run's, when it stopped
+};
+
+// Runs `job` for every case on the threads, each case's exception kept as its error.
+template <typename Job>
+std::vector<FamilyCase> run_cases(std::size_t count, const Job& job) {
+  std::vector<FamilyCase> out(count);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
+    FamilyCase& c = out[static_cast<std::size_t>(k)];
+    try {
+      job(static_cast<std::size_t>(k), c);
+    } catch (const std::exception& e) {
+      c.error = e.what();
+    }
+  }
+  return out;
+}
+
+// The row of the worst case of a family run.
+ValidationRow worst_case(const std::string& name, const std::string& check, const std::string& reference,
+                         const std::vector<FamilyCase>& cases, double tolerance, double seconds) {
+  std::size_t worst = 0;
+  double error = -1.0;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (!cases[k].error.empty()) {
+      SceneRun run;
+      run.error = "case " + std::to_string(k) + ": " + cases[k].error;
+      run.seconds = seconds;
+      return stopped(name, check, reference, Bound::at_most, tolerance, run);
+    }
+    const double e = std::abs(cases[k].measured / cases[k].reference - 1.0);
+    if (e > error) error = e, worst = k;
+  }
+  return judged(name, check, reference,
+                "case " + std::to_string(worst) + ": " + format(cases[worst].measured, 5) + " vs " +
+                    format(cases[worst].reference, 5),
+                error, Bound::at_most, tolerance, seconds);
+}
+
+void wedge_family(const Validator& v, std::vector<ValidationRow>& rows) {
+  if (v.quick() || !v.wedge_family()) return;
+  constexpr std::uint64_t seed = 1;
+  constexpr std::size_t fs_cases = 10, slide_cases = 5;
+  const std::vector<WedgeCase> standing = generate_wedges(seed, fs_cases, 40.0);
+  // The first wedges of the family at φ = 20° that cannot stand (about one in three can).
+  std::vector<WedgeCase> sliding;
+  for (std::size_t n = slide_cases; sliding.size() < slide_cases; n += slide_cases) {
+    sliding.clear();
+    for (const WedgeCase& c : generate_wedges(seed, n, 20.0)) {
+      if (sliding.size() < slide_cases && wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety < 1.0) {
+        sliding.push_back(c);
+      }
+    }
+  }
+  const auto scene_of = [](const WedgeCase& c, double factor) {
+    Scene3d scene = wedge_scene(c);
+    scene.law.kn = factor * auto_normal_penalty3d(scene.blocks);
+    scene.law.kt = scene.law.kn / 10.0;
+    return scene;
+  };
+  for (const double factor : {1.0, 10.0}) {
+    const std::string name = factor == 1.0 ? "wedge family kn=auto" : "wedge family kn=10 auto";
+    v.announce(name);
+    auto start = clock::now();
+    const std::vector<FamilyCase> fs = run_cases(standing.size(), [&](std::size_t k, FamilyCase& out) {
+      const WedgeCase& c = standing[k];
+      out.reference = wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety;
+      const Scene3d scene = scene_of(c, factor);
+      out.measured = safety_factor(scene.blocks, scene.law, scene.params, "wedge").factor_of_safety;
+    });
+    rows.push_back(worst_case(name, "worst FS error, 10 wedges φ=40°", "Hoek & Bray", fs, 5e-3,
+                              std::chrono::duration<double>(clock::now() - start).count()));
+    start = clock::now();
+    const std::vector<FamilyCase> slides = run_cases(sliding.size(), [&](std::size_t k, FamilyCase& out) {
+      const WedgeCase& c = sliding[k];
+      const WedgeLimitEquilibrium reference = wedge_factor_of_safety(c.a, c.b, 1.0);
+      const Scene3d scene = scene_of(c, factor);
+      Dda3d sim(scene.blocks, scene.law, scene.params);
+      const auto wedge = [&] {
+        return std::find_if(sim.blocks().begin(), sim.blocks().end(), [](const Block3dState& b) { return b.id == "wedge"; });
+      };
+      const kernel::Point3 c0 = wedge()->centroid;
+      const double until = wedge_slide_time(c, reference, wedge_family_gravity);
+      while (sim.time() < until - 1e-9) sim.step();
+      const kernel::Point3 c1 = wedge()->centroid, line = reference.intersection;
+      const double t = sim.time();
+      out.reference = 0.5 * wedge_slide_acceleration(reference, wedge_family_gravity) * t * t;
+      out.measured = (c1.x - c0.x) * line.x + (c1.y - c0.y) * line.y + (c1.z - c0.z) * line.z;
+    });
+    rows.push_back(worst_case(name, "worst slide error, 5 wedges φ=20°", "½ g sin ψ (1 - FS) t²", slides, 1e-2,
+                              std::chrono::duration<double>(clock::now() - start).count()));
+  }
+}
+
 std::vector<ValidationRow> run_validation(const ValidationOptions& options) {
   const Validator v(options);
   std::vector<ValidationRow> rows;
@@ -774,6 +889,7 @@ std::vector<ValidationRow> run_validation(const ValidationOptions& options) {
   collapse(v, rows);
   toppling_slumping(v, rows);
   wedge3d(v, rows);
+  wedge_family(v, rows);
   prisms_cdem(v, rows);
   bars_cdem(v, rows);
   return rows;

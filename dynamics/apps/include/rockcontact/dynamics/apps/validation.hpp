@@ -50,6 +50,8 @@ struct ValidationRow {
 struct ValidationOptions {
   std::filesystem::path scenes_dir;  // where the paper scenes' JSON files are
   bool quick = false;                // shortened durations (the test suite's setting)
+  // Also the generated wedge family's four rows (validation.cpp, wedge_family; not with quick).
+  bool wedge_family = false;
   std::filesystem::path out_dir;     // empty: no files; else DIR/<scene file stem>/ per run
   // Called with each scene's name before its runs start (progress on a terminal).
   std::function<void(const std::string&)> on_scene;
