@@ -406,6 +406,16 @@ std::optional<kernel::ContactConstraint> held_contact(const Block& cp, const Blo
 // carry the contact.
 constexpr double parallel_edges = 1.0e-3;
 
+// Puts a constraint on the plane of unit normal n (from cp towards tp) through its points: the
+// normal, the gap of the points along it and a tangent basis of the plane.
+void set_plane(kernel::ContactConstraint& c, const Eigen::Vector3d& n) {
+  c.normal = point(n);
+  c.gap = (vec(c.point_tp) - vec(c.point_cp)).dot(n);
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  c.tangent1 = point(t1);
+  c.tangent2 = point(n.cross(t1));
+}
+
 // The unit direction of the edge feature `f` of block b.
 Eigen::Vector3d edge_direction(const Block& b, const kernel::Feature& f) {
   const ConvexPolyhedron& part = b.parts[f.part];
@@ -429,15 +439,9 @@ bool apart_along_plane(const kernel::ContactConstraint& c, double tolerance) {
 // whose candidate planes all fail, contact_constraints.hpp): its gap is their distance, so it
 // closes only when the vertex comes back to the other block's edge or vertex.
 void to_contact_line(kernel::ContactConstraint& c) {
-  const Eigen::Vector3d apart = vec(c.point_tp) - vec(c.point_cp);
-  const Eigen::Vector3d n = apart.normalized();
-  c.normal = point(n);
+  set_plane(c, (vec(c.point_tp) - vec(c.point_cp)).normalized());
   c.plane = {kernel::PlaneSource::Kind::contact_line, 0, 0};
   c.candidates.clear();
-  c.gap = apart.norm();
-  const Eigen::Vector3d t1 = n.unitOrthogonal();
-  c.tangent1 = point(t1);
-  c.tangent2 = point(n.cross(t1));
 }
 
 bool nearly_parallel(const Block& cp, const Block& tp, const kernel::ContactConstraint& c) {
@@ -484,11 +488,7 @@ std::optional<kernel::ContactConstraint> held_crossing(const Block& cp, const Bl
   c.tp_feature.index = *g_index;
   c.point_cp = point(on_cp);
   c.point_tp = point(on_tp);
-  c.normal = point(n);
-  c.gap = gap;
-  const Eigen::Vector3d t1 = n.unitOrthogonal();
-  c.tangent1 = point(t1);
-  c.tangent2 = point(n.cross(t1));
+  set_plane(c, n);
   return c;
 }
 
@@ -1331,14 +1331,15 @@ bool Dda3d::Impl::revise(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>&
 
 // Seed 001 §4.3 (1) on a closed vertex-edge or vertex-vertex constraint with more than one
 // candidate plane (the kernel's list, §4.2) and alone at its position: the shortest exit
-// (§2.2.1) run again with the points where the solve moved them. (Where a pair has more than one
-// constraint at a position, a concave edge or corner of a non-convex block, each holds its own
-// part's plane, §2.2.2: moved onto a sibling's plane, one would count that plane twice and leave
-// the other empty; a wedge released at touch gained energy so at its crest.) The candidate whose plane the end points are least deep
-// below, by more than replane_margin of the scene's size beyond the present one, becomes its
-// plane: a vertex found just above a block's edge and driven down past it leaves by the side
-// face, not by the top its gap at the start chose. Made at most once per step, so the iteration
-// cannot swing between two planes; true when it changed the plane.
+// (§2.2.1) run again with the points where the solve moved them. The candidate whose plane the
+// end points are least deep below, by more than replane_margin of the scene's size beyond the
+// present one, becomes its plane: a vertex found just above a block's edge and driven down past
+// it leaves by the side face, not by the top its gap at the start chose. Made at most once per
+// step, so the iteration cannot swing between two planes; true when it changed the plane.
+// (Where a pair has more than one constraint at a position, a concave edge or corner of a
+// non-convex block, each holds its own part's plane, §2.2.2: moved onto a sibling's plane, one
+// would count that plane twice and leave the other empty; a wedge released at touch gained
+// energy so at its crest.)
 bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
                           const Eigen::Ref<const Eigen::VectorXd>& dj) const {
   const std::vector<kernel::CandidatePlane>& candidates = k.geometry.candidates;
@@ -1354,12 +1355,8 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
   k.replaned = true;
   kernel::ContactConstraint& g = k.geometry;
   const Eigen::Vector3d n = vec(chosen->normal);
-  g.normal = chosen->normal;
   g.plane = chosen->source;
-  g.gap = (vec(g.point_tp) - vec(g.point_cp)).dot(n);
-  const Eigen::Vector3d t1 = n.unitOrthogonal();
-  g.tangent1 = point(t1);
-  g.tangent2 = point(n.cross(t1));
+  set_plane(g, n);
   const Block &ba = blocks[k.a], &bb = blocks[k.b];
   k.kinematics = detail::contact_kinematics({g.point_cp, point(ba.moments.centroid), ba.dof},
                                             {g.point_tp, point(bb.moments.centroid), bb.dof}, g.normal,
