@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <exception>
-#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <numbers>

@@ -207,15 +207,6 @@ Point3 loop_centroid(const Topology& t, const ConvexPolyhedron::Face& loop) {
   return {sum.x / n, sum.y / n, sum.z / n};
 }
 
-// Marks the faces of each part that lie against a face of another part of the same block: all
-// the other face's vertices within `flush` (metres) of the plane, the other part on the plane's
-// outer side, and the two faces overlapping (the centroid of one strictly inside the other, seen
-// from the other part's vertex farthest above the plane), not only touching along an edge in
-// the plane: a wedge's two joint faces meet the base's parts in one plane each, on both sides of
-// the base's concave edge, and the face it rests on is no internal face. `flush` is
-// face_planarity_tolerance times the block's size: parts cut from one block meet only to the
-// rounding of their vertices, and an exact test would leave their shared faces as contact planes
-// inside the block.
 // Does every vertex of `loop` (a face of `other`) lie within `flush` of face f's plane?
 template <NumberPolicy Policy>
 bool in_face_plane(const Topology& t, std::uint32_t f, const Topology& other, const ConvexPolyhedron::Face& loop,
@@ -227,6 +218,15 @@ bool in_face_plane(const Topology& t, std::uint32_t f, const Topology& other, co
   });
 }
 
+// Marks the faces of each part that lie against a face of another part of the same block: all
+// the other face's vertices within `flush` (metres) of the plane, the other part on the plane's
+// outer side, and the two faces overlapping (the centroid of one strictly inside the other, seen
+// from the other part's vertex farthest above the plane), not only touching along an edge in
+// the plane: a wedge's two joint faces meet the base's parts in one plane each, on both sides of
+// the base's concave edge, and the face it rests on is no internal face. `flush` is
+// face_planarity_tolerance times the block's size: parts cut from one block meet only to the
+// rounding of their vertices, and an exact test would leave their shared faces as contact planes
+// inside the block.
 template <NumberPolicy Policy>
 void mark_internal_faces(std::vector<Topology>& parts, double flush) {
   for (Topology& t : parts) {
