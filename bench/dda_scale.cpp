@@ -163,7 +163,7 @@ Measure run(std::size_t n, std::size_t threads, const Options& o, bool settled) 
   dynamics::DdaParams params;
   params.dt = 1.0e-4;
   params.threads = threads;
-  params.initial_equilibrium = false;  // the step's cost is measured, from the states placed
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;  // the step's cost is measured, from the states placed
   const double before = resident_bytes();
   auto start = clock_type::now();
   dynamics::Dda2d sim(blocks, law, params);

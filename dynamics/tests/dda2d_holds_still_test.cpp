@@ -51,7 +51,7 @@ ContactLaw frictional(double kn, double kt, double phi, double H) {
 double half_the_estimate(const std::vector<BlockSpec>& blocks, const ContactLaw& law) {
   DdaParams probe;
   probe.dt = 1e-12;
-  probe.initial_equilibrium = false;
+  probe.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   return std::min(1e-4, 0.5 * Dda2d(blocks, law, probe).critical_time_step());
 }
 
@@ -124,7 +124,7 @@ BOOST_AUTO_TEST_CASE(contact_dashpot_decays_by_the_damped_oscillator_decrement) 
   ContactLaw law = testing::frictionless(1e7, 1.0);
   law.damping_ratio = zeta;
   DdaParams params = testing::params(1e-5, {0.0, -g});
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda2d sim({block("floor", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}}, true), box}, law, params);
   const double m = sim.blocks()[1].mass, y0 = sim.blocks()[1].centroid.y;
   const double static_depth = m * g * 1.0 / (2.0 * 1e7 * 1.0);
@@ -164,7 +164,7 @@ BOOST_AUTO_TEST_CASE(static_analysis_of_a_column_carries_the_weights_above) {
   }
   DdaParams params = testing::params(1e-4, {0.0, -g});
   params.analysis = Analysis::static_equilibrium;
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda2d sim(blocks, frictional(1e9, 1e9, 30.0, 1.0), params);
   while (sim.balance_ratio() >= 1e-9 || sim.steps() == 0) {
     BOOST_TEST_REQUIRE(sim.steps() < 100000u);

@@ -138,7 +138,7 @@ Run slide(double phi, double height, double sink, bool paper = true) {
   params.gravity = {0.0, -g};
   if (paper) {
     law.friction->model = rockcontact::contact::FrictionModel::paper;
-    params.initial_equilibrium = false;
+    params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   }
   Dda2d sim({incline, slider}, law, params);
   const Point2 c0 = sim.blocks()[1].centroid;
@@ -225,9 +225,9 @@ BOOST_AUTO_TEST_CASE(energy_balance_closes_over_seconds_of_sliding) {
         law.friction = FrictionLaw{kt, 20.0};
         law.damping_ratio = zeta;
         DdaParams params = testing::params(1e-12, {0.0, -g});
-        params.initial_equilibrium = false;
+        params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
         params.dt = 0.5 * Dda2d(blocks, law, params).critical_time_step();
-        params.initial_equilibrium = settled;
+        params.initial_equilibrium = settled ? InitialEquilibrium::automatic : InitialEquilibrium::off;
         Dda2d sim(blocks, law, params);
         testing::EnergyBalance balance(sim.energies());
         const Point2 c0 = sim.blocks()[1].centroid;

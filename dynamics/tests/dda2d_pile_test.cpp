@@ -266,7 +266,7 @@ BOOST_AUTO_TEST_CASE(static_analysis_holds_the_settled_pile) {
   params.dt = 1e-4;  // counts the iterations only
   params.threads = 1;
   params.analysis = Analysis::static_equilibrium;
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   const auto start = std::chrono::steady_clock::now();
   Dda2d sim(specs, rock_contact(), params);
   while (sim.balance_ratio() >= 1e-6 || sim.steps() == 0) {

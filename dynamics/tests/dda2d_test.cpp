@@ -208,22 +208,26 @@ BOOST_AUTO_TEST_CASE(paper_parameter_sets_are_accepted) {
 // contact far too soft for its weight (kn = 1e4 Pa: the static overlap would be
 // m g H / (2 kn L) = 0.98 m) sinks; once the minimum translation distance passes half the
 // smaller inradius (0.25 m) the step throws, naming both blocks and the numbers. Released as
-// placed (no initial-equilibrium pre-solve), so that the steps are what sinks it; with the
-// pre-solve the relaxation sinks it and the constructor throws the same diagnosis.
+// placed (no initial-equilibrium pre-solve), so that the steps are what sinks it. The strict
+// pre-solve refuses it first: its solve would move the box by the 0.98 m, more than its
+// inradius (0.5 m).
 BOOST_AUTO_TEST_CASE(penetration_deeper_than_half_the_inradius_stops_the_run) {
   BlockSpec base = block("base", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}});
   base.fixed = true;
   BlockSpec box = block("box", square(-0.5, 0, 1));
   box.rigid = true;
   try {
-    Dda2d settled({base, box}, frictionless(1.0e4), params(1.0e-4, {0.0, -9.81}));
-    BOOST_FAIL("the pre-solve sank the box without a StabilityError");
+    DdaParams strict = params(1.0e-4, {0.0, -9.81});
+    strict.initial_equilibrium = InitialEquilibrium::strict;
+    Dda2d settled({base, box}, frictionless(1.0e4), strict);
+    BOOST_FAIL("the strict pre-solve took a box its contact cannot hold");
   } catch (const StabilityError& e) {
     BOOST_TEST_MESSAGE(e.what());
-    BOOST_TEST(message_has(e, "block 'base' and block 'box' overlap by"));
+    BOOST_TEST(message_has(e, "would move block 'box' by 0.98"));
+    BOOST_TEST(message_has(e, "more than its inradius (0.5 m)"));
   }
   DdaParams released = params(1.0e-4, {0.0, -9.81});
-  released.initial_equilibrium = false;
+  released.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda2d sim({base, box}, frictionless(1.0e4), released);
   try {
     while (sim.steps() < 10000) sim.step();
@@ -244,7 +248,8 @@ BOOST_AUTO_TEST_CASE(blocks_overlapping_at_the_start_are_refused_as_input) {
   BlockSpec base = block("base", {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}});
   base.fixed = true;
   const BlockSpec sunk = block("sunk", square(-0.5, -0.3, 1));
-  for (const bool presolve : {false, true}) {
+  for (const InitialEquilibrium presolve :
+       {InitialEquilibrium::off, InitialEquilibrium::automatic, InitialEquilibrium::strict}) {
     DdaParams p = params(1.0e-4, {0.0, -9.81});
     p.initial_equilibrium = presolve;
     try {

@@ -136,6 +136,37 @@ BOOST_AUTO_TEST_CASE(a_fast_spin_is_cut_to_the_rotation_limit) {
   BOOST_TEST(std::fabs(sim.blocks()[0].rotation[2] - w * sim.time()) <= 1e-9);
 }
 
+// A column 0.5 m x 0.5 m x 2 m on a 25° slope (phi 40°: it does not slide) has its centre of
+// gravity 1 m above the base and 0.47 m down the slope from the base's centre, beyond the
+// base's half-width 0.25 m: it has no static state and topples. The default pre-solve starts
+// it from its given state and names it; it then turns down the slope (after 0.3 s by more
+// than 0.01 rad, the toppling's own scale: ½ (α ≈ 2 rad/s² at the start) t² ≈ 0.09 rad). The
+// strict pre-solve refuses it, naming it.
+BOOST_AUTO_TEST_CASE(a_toppling_column_starts_as_given_and_topples) {
+  const std::vector<Block3dSpec> blocks{block("slab", {-3, -2, -1}, {3, 2, 0}, true),
+                                        block("column", {-0.25, -0.25, 0}, {0.25, 0.25, 2})};
+  Dda3dParams params;
+  params.dt = 1.0e-3;
+  params.gravity = tilted_gravity(25.0 * std::numbers::pi / 180.0);
+  Dda3d sim(blocks, penalty(1.0e10, 1.0e9, 40.0), params);
+  const Equilibrium& e = sim.initial_equilibrium();
+  BOOST_TEST(e.ran);
+  BOOST_TEST(e.unsettled == std::vector<std::string>{"column"});
+  BOOST_TEST(e.blocks == 0u);
+  BOOST_TEST(sim.blocks()[1].centroid.z == 1.0);  // as given
+  while (sim.time() < 0.3) sim.step();
+  BOOST_TEST_MESSAGE("column turned " << sim.blocks()[1].rotation[1] << " rad in 0.3 s");
+  BOOST_TEST(sim.blocks()[1].rotation[1] > 0.01);
+  params.initial_equilibrium = InitialEquilibrium::strict;
+  try {
+    Dda3d strict(blocks, penalty(1.0e10, 1.0e9, 40.0), params);
+    BOOST_FAIL("the strict pre-solve took a column that topples");
+  } catch (const Stability3dError& error) {
+    BOOST_TEST_MESSAGE(error.what());
+    BOOST_TEST(std::string(error.what()).find("block 'column'") != std::string::npos);
+  }
+}
+
 // A unit cube on a fixed slab: four vertex-face constraints carry its weight, m g / 4 each, so
 // at rest the cube sinks by m g / (4 kn). Without the initial equilibrium it starts on unloaded
 // springs; the implicit step damps the bounce of the first steps, and after 0.2 s the
@@ -144,7 +175,7 @@ BOOST_AUTO_TEST_CASE(cube_rests_at_the_static_penetration) {
   const ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   Dda3dParams params;
   params.dt = 1.0e-3;
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda3d sim(cube_on_slab(), law, params);
   BOOST_TEST(sim.blocks()[1].centroid.z == 0.5);
   for (int i = 0; i < 200; ++i) sim.step();
@@ -289,7 +320,7 @@ BOOST_AUTO_TEST_CASE(a_contact_closing_within_the_step_starts_closed) {
     blocks[1].velocity = {0, 0, -1.0, 0, 0, 0};
     Dda3dParams params;
     params.dt = 1.0e-3;
-    params.initial_equilibrium = false;
+    params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
     Dda3d sim(blocks, penalty(1.0e9, 1.0e9, 30.0), params);
     BOOST_TEST(sim.contacts().size() >= 4u);
     sim.step();
@@ -311,7 +342,7 @@ BOOST_AUTO_TEST_CASE(a_contact_closed_by_the_prediction_holds_no_tension) {
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.gravity = {0, 0, 3000.0};
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   ContactLaw3d law = penalty(1.0e9, 1.0e9, 30.0);
   law.tensile_strength = 1.0e7;
   Dda3d sim(blocks, law, params);
@@ -340,7 +371,7 @@ BOOST_AUTO_TEST_CASE(a_contact_closing_within_the_step_stretches_from_its_touch)
   Dda3dParams params;
   params.dt = h;
   params.gravity = {0, 0, 0};
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda3d sim(blocks, penalty(1.0e9, kt, 30.0), params);
   sim.step();
   BOOST_TEST(sim.last_step().dt == h);
@@ -392,7 +423,7 @@ BOOST_AUTO_TEST_CASE(a_vertex_driven_past_an_edge_leaves_by_the_side_face) {
   Dda3dParams params;
   params.dt = 1.0e-3;
   params.gravity = {0, 0, 0};
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   Dda3d sim({block("base", {0, 0, 0}, {1, 1, 1}, true), tetra}, penalty(1.0e7, 1.0e6, 0.0), params);
   sim.step();
   BOOST_TEST(sim.last_step().dt == 1.0e-3);
@@ -513,7 +544,7 @@ BOOST_AUTO_TEST_CASE(an_unsettled_open_close_iteration_names_its_contact) {
   params.dt = 1.0e-3;
   params.max_open_close = 1;
   params.min_dt_ratio = 0.6;
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   const double lift = 2.0e-6;
   Dda3d sim(cube_on_slab(lift), penalty(1.0e9, 1.0e8, 30.0), params);
   std::string stopped;
@@ -548,7 +579,7 @@ BOOST_AUTO_TEST_CASE(cubes_overlapping_face_on_come_apart) {
   Dda3dParams params;
   params.dt = 1.0e-4;
   params.gravity = {0, 0, 0};
-  params.initial_equilibrium = false;
+  params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   const ContactLaw3d law = penalty(1.0e10, 1.0e9, 30.0);
   Dda3d sim({block("left", {0, 0, 0}, {1, 1, 1}), block("right", {1 - overlap, 0, 0}, {2 - overlap, 1, 1})}, law, params);
   const auto contacts = sim.contacts();

@@ -149,7 +149,7 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_defaults) {
   BOOST_TEST(scene.blocks[1].velocity == (std::array<double, 6>{}));
   BOOST_TEST(scene.every == 100u);
   BOOST_TEST(scene.track == std::vector<std::string>{"cube"});  // the only block not fixed
-  BOOST_TEST(scene.params.initial_equilibrium);
+  BOOST_TEST((scene.params.initial_equilibrium == dyn::InitialEquilibrium::automatic));
   BOOST_TEST(!scene.params.static_analysis);
 }
 
@@ -159,7 +159,13 @@ BOOST_AUTO_TEST_CASE(analysis_and_initial_equilibrium) {
   document["initial_equilibrium"] = false;
   const dyn::Scene3d scene = dyn::parse_scene3d(document, "static.json");
   BOOST_TEST(scene.params.static_analysis);
-  BOOST_TEST(!scene.params.initial_equilibrium);
+  BOOST_TEST((scene.params.initial_equilibrium == dyn::InitialEquilibrium::off));
+  document["initial_equilibrium"] = "auto";
+  BOOST_TEST((dyn::parse_scene3d(document, "auto.json").params.initial_equilibrium ==
+              dyn::InitialEquilibrium::automatic));
+  document["initial_equilibrium"] = true;
+  BOOST_TEST((dyn::parse_scene3d(document, "strict.json").params.initial_equilibrium ==
+              dyn::InitialEquilibrium::strict));
   document["analysis"] = "dynamic";
   BOOST_TEST(!dyn::parse_scene3d(document, "dynamic.json").params.static_analysis);
   expect_error([](json& d) { d["analysis"] = "quasi"; }, "analysis", "one of \"dynamic\", \"static\"");
@@ -167,7 +173,7 @@ BOOST_AUTO_TEST_CASE(analysis_and_initial_equilibrium) {
                "critical damping ratio, a finite number >= 0");
   document["contact"]["damping_ratio"] = 0.5;
   BOOST_TEST(dyn::parse_scene3d(document, "damped.json").law.damping_ratio == 0.5);
-  expect_error([](json& d) { d["initial_equilibrium"] = 1; }, "initial_equilibrium", "true or false");
+  expect_error([](json& d) { d["initial_equilibrium"] = 1; }, "initial_equilibrium", R"("auto", true or false)");
 }
 
 // Each malformed field is named by its JSON path, with what was expected.

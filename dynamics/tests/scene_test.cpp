@@ -131,7 +131,7 @@ BOOST_AUTO_TEST_CASE(optional_fields_take_their_documented_defaults) {
   BOOST_TEST(scene.every == 100u);
   BOOST_TEST(!scene.blocks[1].fixed);
   BOOST_TEST(scene.blocks[1].velocity.x == 0.0);
-  BOOST_TEST(scene.params.initial_equilibrium);
+  BOOST_TEST((scene.params.initial_equilibrium == dyn::InitialEquilibrium::automatic));
   BOOST_TEST(scene.law.damping_ratio == 0.0);
   BOOST_TEST((scene.params.analysis == dyn::Analysis::dynamic));
   BOOST_TEST(scene.static_tolerance == 1e-6);
@@ -265,7 +265,7 @@ BOOST_AUTO_TEST_CASE(material_and_contact_errors) {
   expect_error([](json& d) { d["contact"]["damping_ratio"] = -0.1; }, "contact.damping_ratio",
                "the contact dashpots' critical damping ratio, a finite number >= 0");
   expect_error([](json& d) { d["initial_equilibrium"] = "yes"; }, "initial_equilibrium",
-               "true or false");
+               R"("auto", true or false)");
   expect_error([](json& d) { d["analysis"] = "quasi-static"; }, "analysis",
                R"(one of "dynamic", "static", got string "quasi-static")");
   expect_error([](json& d) { d["static_tolerance"] = 0.0; }, "static_tolerance",
@@ -300,7 +300,7 @@ BOOST_AUTO_TEST_CASE(friction_law_cohesion_and_damping_fields) {
   BOOST_TEST((scene.law.friction->model == contact::FrictionModel::paper));
   BOOST_TEST(scene.law.friction->cohesion == 2.5e4);
   BOOST_TEST(scene.law.damping_ratio == 0.1);
-  BOOST_TEST(!scene.params.initial_equilibrium);
+  BOOST_TEST((scene.params.initial_equilibrium == dyn::InitialEquilibrium::off));
   BOOST_TEST((scene.params.analysis == dyn::Analysis::static_equilibrium));
   BOOST_TEST(scene.static_tolerance == 1e-4);
   BOOST_TEST_REQUIRE(scene.law.interfaces.size() == 1u);

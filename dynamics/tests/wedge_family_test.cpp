@@ -378,7 +378,7 @@ BOOST_AUTO_TEST_CASE(a_wedge_released_at_touch_is_not_held_by_a_copy_of_a_corner
   const dyn::WedgeLimitEquilibrium r = dyn::wedge_factor_of_safety(c.a, c.b, 1.0);
   BOOST_TEST_REQUIRE(r.factor_of_safety == 0.3321, boost::test_tools::tolerance(1e-3));
   dyn::Scene3d scene = dyn::wedge_scene(c, {1.0e10, 1.0e-4, 1.0, 100});
-  scene.params.initial_equilibrium = false;
+  scene.params.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   dyn::Dda3d sim(scene.blocks, scene.law, scene.params);
   const Point3 start = sim.blocks()[1].centroid;
   while (sim.time() < 0.1 - 1e-9) sim.step();

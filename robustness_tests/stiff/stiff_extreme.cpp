@@ -67,7 +67,7 @@ DdaParams step_params(double dt, bool gravity) {
   DdaParams p;
   p.dt = dt;
   p.gravity = {0.0, gravity ? -g : 0.0};
-  p.initial_equilibrium = false;
+  p.initial_equilibrium = rockcontact::dynamics::InitialEquilibrium::off;
   return p;
 }
 

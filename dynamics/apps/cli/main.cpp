@@ -192,6 +192,16 @@ class ProgressBar {
     draw(static_cast<std::size_t>(fraction * 1000.0), what.str());
   }
 
+  // The pre-solve (dynamics/common/equilibrium.hpp): `iterations` done, the out-of-balance
+  // ratio reached, towards `tolerance` (the bar: how many of the decades from 1 down to it).
+  void update_presolve(std::size_t iterations, double ratio, double tolerance) {
+    if (!enabled_) return;
+    const double fraction = std::clamp(std::log10(ratio) / std::log10(tolerance), 0.0, 1.0);
+    std::ostringstream what;
+    what << "initial equilibrium: iteration " << iterations << ", ratio " << std::setprecision(3) << ratio;
+    draw(static_cast<std::size_t>(fraction * 1000.0), what.str());
+  }
+
   // Ends the bar's line, if one was drawn.
   void finish() {
     if (drawn_) std::cerr << '\n';
@@ -229,6 +239,24 @@ int report_stop(const RunArgs& options, double time, const std::string& error) {
   return exit_bad_input;
 }
 
+// What a user must know of the pre-solve that started the run: the blocks it started from their
+// given state, and a state reached above the tolerance.
+void warn_equilibrium(const RunArgs& options, const dyn::Equilibrium& e) {
+  if (!e.unsettled.empty()) {
+    std::cerr << "rockcontact: " << options.scene << ": warning: the initial equilibrium left "
+              << e.unsettled.size() << " block(s) without a static state where they rest, started from "
+              << "their given state:";
+    for (std::size_t k = 0; k < e.unsettled.size() && k < 10; ++k) std::cerr << " '" << e.unsettled[k] << "'";
+    if (e.unsettled.size() > 10) std::cerr << " ... (all in summary.json)";
+    std::cerr << '\n';
+  }
+  if (e.ran && !e.converged) {
+    std::cerr << "rockcontact: " << options.scene << ": warning: the initial equilibrium stopped at "
+              << "an out-of-balance force ratio of " << e.ratio << " after " << e.iterations
+              << " iterations, above its tolerance; the run starts from there\n";
+  }
+}
+
 // The flags only the 2D DDA has: false, after saying that `flag` `applies` (the rest of the
 // message), when one of them is given.
 bool without_2d_flags(const RunArgs& options, std::string_view applies) {
@@ -249,8 +277,11 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
                                  "runs on one thread")) {
     return exit_bad_input;
   }
-  const dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
+  dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
   ProgressBar bar;
+  scene.params.equilibrium_progress = [&bar](std::size_t iterations, double ratio) {
+    bar.update_presolve(iterations, ratio, 1e-12);
+  };
   dyn::Run3dOptions run_options;
   run_options.out_dir = options.out;
   run_options.progress = [&bar, &scene](std::size_t steps, double time) {
@@ -267,6 +298,7 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
     return exit_bad_input;
   }
   bar.finish();
+  warn_equilibrium(options, report.equilibrium);
   if (report.status != "completed") return report_stop(options, report.time, report.error);
   const double mean = report.steps == 0 ? 0.0
                                         : static_cast<double>(report.open_close_total) /
@@ -343,6 +375,10 @@ int run_run(const RunArgs& options) {
   }
   scene.params.threads = options.threads;
   ProgressBar bar;
+  const double tolerance = scene.params.equilibrium_tolerance;
+  scene.params.equilibrium_progress = [&bar, tolerance](std::size_t iterations, double ratio) {
+    bar.update_presolve(iterations, ratio, tolerance);
+  };
   dyn::RunOptions run_options;
   run_options.out_dir = options.out;
   run_options.checkpoint_every = options.checkpoint_every;
@@ -359,6 +395,7 @@ int run_run(const RunArgs& options) {
     return exit_bad_input;
   }
   bar.finish();
+  warn_equilibrium(options, report.equilibrium);
   if (report.status != "completed") return report_stop(options, report.time, report.error);
   std::cout << "scene: " << scene.source << '\n';
   if (!report.restarted_from.empty()) {

@@ -12,10 +12,12 @@
 #include <utility>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <omp.h>
 
 #include "block_matrices.hpp"
 #include "broad_phase.hpp"
+#include "rockcontact/contact/potential2d/contact_springs.hpp"
 #include "rockcontact/kernel/2d/block_cutting.hpp"
 #include "rockcontact/kernel/2d/convex_polygon.hpp"
 #include "rockcontact/kernel/2d/entrance_block.hpp"
@@ -36,12 +38,23 @@ constexpr double penetration_fraction = 0.5;
 // Below this many candidate pairs (or blocks) a parallel pass runs on the calling thread only:
 // starting the workers would cost more than it saves.
 constexpr std::ptrdiff_t parallel_threshold = 64;
-// Initial equilibrium (dda2d.hpp): omega h of the relaxation steps, and the iteration cap. On the
-// 205-block rock mass of examples/scenes/collapse_*.json, 0.8, 1.0 and 1.2 took 10 160, 5 065 and
-// 4 481 iterations, and 1.6 diverged (its stiffest modes exceed the Gershgorin estimate there):
-// 1.0 keeps a margin.
+// Static analysis (dda2d.hpp): omega h of the relaxation steps. On the 205-block rock mass of
+// examples/scenes/collapse_*.json, 0.8, 1.0 and 1.2 took 10 160, 5 065 and 4 481 iterations, and
+// 1.6 diverged (its stiffest modes exceed the Gershgorin estimate there): 1.0 keeps a margin.
 constexpr double relaxation_omega_h = 1.0;
-constexpr std::size_t relaxation_iterations = 100000;
+// Initial equilibrium (dda2d.hpp): Newton iterations before a block still out of balance counts
+// as having no static state; the largest move of one iteration, of the block's inradius; the
+// regularisation of the stiffness, of a block's own contact scale (kn / H times its perimeter),
+// which leaves a free mode a move 10⁹ times the contacts' and the solve finite. The open-close
+// iteration within one Newton iteration: its solves, and how far (of its line) a closed part
+// may move and count as unchanged.
+constexpr std::size_t newton_iterations = 30;
+constexpr std::size_t relaxation_iterations = 20000;
+constexpr double newton_step_cap = 0.25;
+constexpr double newton_regularization = 1.0e-9;
+constexpr double min_damping = 1.0e-3;
+constexpr std::size_t max_open_close = 20;
+constexpr double part_tolerance = 0.05;
 // Pairs apart by at most this fraction of the smaller perimeter count as resting on each other.
 constexpr double resting_gap = 1.0e-6;
 
@@ -246,12 +259,27 @@ struct Dda2d::Impl {
   void estimate_critical_step();
   void settle();
   void start_static_analysis();
-  std::vector<std::vector<std::size_t>> resting_pairs() const;
+  struct Resting {
+    std::vector<std::vector<std::size_t>> adjacent;  // per block, once per resting pair of parts
+    std::vector<PartPair> parts;                     // in pair order
+  };
+  Resting resting_pairs() const;
+  double reference_force(const std::vector<char>& moving) const;
+  SettleRound newton(const std::vector<char>& moving, const Resting& resting);
+  bool relax_to_tolerance(const std::vector<char>& moving, const Resting& resting);
+  struct LinearModel;
+  void build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
+                   LinearModel& model) const;
+  void solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                   const LinearModel& model, double damping, Eigen::VectorXd& delta) const;
+  void solve_open_close(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                        LinearModel& model, double damping, Eigen::VectorXd& delta) const;
   void prepare_relaxation(std::vector<char> moving, const std::vector<std::vector<std::size_t>>& adjacent);
   void relax_once();
   double balance_ratio() const;
   double out_of_balance(const std::vector<char>& moving, double reference, std::size_t& worst) const;
   double gyration_squared(std::size_t i) const;
+  double unbalanced_force(std::size_t i) const;
   // Geometry-dependent data after the vertices moved.
   void refresh(std::size_t i);
   // Forces and accelerations at the current instant.
@@ -328,6 +356,7 @@ struct Dda2d::Impl {
   std::vector<FrictionRecord> previous_friction;  // the last evaluation's, while one runs
   std::size_t carried = 0;                        // walk position in previous_friction
   std::vector<std::size_t> friction_of;
+  std::vector<double> contact_length;  // L of contacts[k] (PartContact::length), m
   std::vector<PartContact> candidates;
   std::vector<PairScratch> thread_scratch;  // one per thread
   int thread_count = 1;
@@ -408,7 +437,7 @@ Dda2d::Impl::Impl(std::vector<BlockSpec> specs, ContactLaw contact_law, DdaParam
     return;
   }
   evaluate_forces();
-  if (params.initial_equilibrium) settle();
+  if (params.initial_equilibrium != InitialEquilibrium::off) settle();
   if (params.analysis == Analysis::static_equilibrium) start_static_analysis();
   const Energies e = energies();
   initial_total = e.total();
@@ -618,6 +647,7 @@ void Dda2d::Impl::evaluate_contacts() {
   measure_candidates();
   contacts.clear();
   friction_of.clear();
+  contact_length.clear();
   friction.swap(previous_friction);
   friction.clear();
   carried = 0;
@@ -755,6 +785,7 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
   apply_contact(c);
   contacts.push_back(c);
   friction_of.push_back(record);
+  contact_length.push_back(m.length);
 }
 
 void Dda2d::Impl::check_penetration(const PartContact& m) {
@@ -845,6 +876,14 @@ double Dda2d::Impl::gyration_squared(std::size_t i) const {
   return inertia / states[i].mass;
 }
 
+// |F_i| of the out-of-balance ratio (dda2d.hpp), N/m.
+double Dda2d::Impl::unbalanced_force(std::size_t i) const {
+  const Vector6& f = bodies[i].force;
+  double moments = f[2] * f[2];
+  if (!states[i].rigid) moments += f[3] * f[3] + f[4] * f[4] + f[5] * f[5];
+  return std::sqrt(f[0] * f[0] + f[1] * f[1] + moments / gyration_squared(i));
+}
+
 // max_i |F_i| / reference over the blocks marked in `moving`; `worst` is the block of the max.
 double Dda2d::Impl::out_of_balance(const std::vector<char>& moving, double reference,
                                    std::size_t& worst) const {
@@ -852,10 +891,7 @@ double Dda2d::Impl::out_of_balance(const std::vector<char>& moving, double refer
   worst = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!moving[i]) continue;
-    const Vector6& f = bodies[i].force;
-    double moments = f[2] * f[2];
-    if (!states[i].rigid) moments += f[3] * f[3] + f[4] * f[4] + f[5] * f[5];
-    const double size = std::sqrt(f[0] * f[0] + f[1] * f[1] + moments / gyration_squared(i));
+    const double size = unbalanced_force(i);
     if (size > most) {
       most = size;
       worst = i;
@@ -868,7 +904,7 @@ double Dda2d::Impl::out_of_balance(const std::vector<char>& moving, double refer
 // most resting_gap of the smaller perimeter (coordinates typed or computed to ~7 digits put a
 // block "on" a slope within that), as adjacency lists with a block's neighbour listed once per
 // resting pair of their parts.
-std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
+Dda2d::Impl::Resting Dda2d::Impl::resting_pairs() const {
   const std::size_t n = bodies.size();
   std::vector<detail::BroadPhaseBox> inflated(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -887,41 +923,40 @@ std::vector<std::vector<std::size_t>> Dda2d::Impl::resting_pairs() const {
   } else {
     detail::UniformGrid().find_pairs(inflated, near);
   }
-  std::vector<std::vector<std::size_t>> adjacent(n);
+  std::sort(near.begin(), near.end());
+  Resting resting;
+  resting.adjacent.resize(n);
   for (const auto& [i, j] : near) {
     const double gap = resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter);
-    for (const kernel::ConvexPolygon& a : bodies[i].parts.polygons) {
-      for (const kernel::ConvexPolygon& b : bodies[j].parts.polygons) {
-        if (contact::PotentialContactMethod::separation(a, b) > gap) continue;
-        adjacent[i].push_back(j);  // once per resting pair of parts
-        adjacent[j].push_back(i);
+    const std::vector<kernel::ConvexPolygon>& a = bodies[i].parts.polygons;
+    const std::vector<kernel::ConvexPolygon>& b = bodies[j].parts.polygons;
+    for (std::size_t p = 0; p < a.size(); ++p) {
+      for (std::size_t q = 0; q < b.size(); ++q) {
+        if (contact::PotentialContactMethod::separation(a[p], b[q]) > gap) continue;
+        resting.adjacent[i].push_back(j);  // once per resting pair of parts
+        resting.adjacent[j].push_back(i);
+        resting.parts.push_back({i, j, p, q});
       }
     }
   }
-  return adjacent;
+  return resting;
 }
 
-namespace {
-
-// The blocks connected to a support through the pairs resting on each other at t = 0.
-std::vector<char> supported(const std::vector<std::vector<std::size_t>>& adjacent,
-                            const std::vector<BlockState>& states) {
-  std::vector<char> moving(states.size(), 0);
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    if (states[i].fixed) queue.push_back(i);
+// F_ref of the out-of-balance ratio over the blocks in `moving`: the largest weight or normal
+// contact force among them (zero: nothing loads them).
+double Dda2d::Impl::reference_force(const std::vector<char>& moving) const {
+  double reference = 0.0;
+  const double g = std::hypot(params.gravity.x, params.gravity.y);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (moving[i]) reference = std::max(reference, states[i].mass * g);
   }
-  for (std::size_t k = 0; k < queue.size(); ++k) {
-    for (const std::size_t j : adjacent[queue[k]]) {
-      if (states[j].fixed || moving[j]) continue;
-      moving[j] = 1;
-      queue.push_back(j);
+  for (const ContactState& c : contacts) {
+    if (moving[c.cp] || moving[c.tp]) {
+      reference = std::max(reference, std::hypot(c.normal_force.x, c.normal_force.y));
     }
   }
-  return moving;
+  return reference;
 }
-
-}  // namespace
 
 // Relaxation of the blocks in `moving` with h = 1: M' = (omega_i / relaxation_omega_h)² M keeps
 // every block at omega' h = relaxation_omega_h, with omega_i² bounding the block's row of M^-1 K
@@ -937,16 +972,7 @@ void Dda2d::Impl::prepare_relaxation(std::vector<char> moving,
   relaxation.moving = std::move(moving);
   relaxation.velocity.assign(n, Vector6{});
   relaxation.mass_scale.assign(n, 0.0);
-  relaxation.reference = 0.0;
-  const double g = std::hypot(params.gravity.x, params.gravity.y);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (relaxation.moving[i]) relaxation.reference = std::max(relaxation.reference, states[i].mass * g);
-  }
-  for (const ContactState& c : contacts) {
-    if (relaxation.moving[c.cp] || relaxation.moving[c.tp]) {
-      relaxation.reference = std::max(relaxation.reference, std::hypot(c.normal_force.x, c.normal_force.y));
-    }
-  }
+  relaxation.reference = reference_force(relaxation.moving);
   double kn = 0.0, kt = 0.0;
   for (const PairLaw& l : laws) {
     kn = std::max(kn, l.normal.kn);
@@ -996,35 +1022,355 @@ void Dda2d::Impl::relax_once() {
   evaluate_forces();
 }
 
+// The pre-solve (dda2d.hpp, "Initial equilibrium"): rounds of Newton's method over the blocks
+// resting on a support (dynamics/common/equilibrium.hpp); then the release.
 void Dda2d::Impl::settle() {
-  const std::vector<std::vector<std::size_t>> adjacent = resting_pairs();
-  prepare_relaxation(supported(adjacent, states), adjacent);
-  if (relaxation.reference == 0.0) return;
-  equilibrium.ran = true;
-  equilibrium.blocks = static_cast<std::size_t>(
-      std::count(relaxation.moving.begin(), relaxation.moving.end(), 1));
+  const WallTimer timer(equilibrium.seconds);
+  const Resting resting = resting_pairs();
+  std::vector<char> fixed(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) fixed[i] = states[i].fixed;
   settling = true;
-  std::size_t worst = 0;
-  for (;; ++equilibrium.iterations) {
-    equilibrium.ratio = out_of_balance(relaxation.moving, relaxation.reference, worst);
-    if (equilibrium.ratio < params.equilibrium_tolerance) break;
-    if (equilibrium.iterations == relaxation_iterations) {
-      throw StabilityError(
-          "dda2d: the initial equilibrium was not reached in " + std::to_string(relaxation_iterations) +
-          " relaxation iterations: the out-of-balance force ratio is " + number(equilibrium.ratio) +
-          " (tolerance " + number(params.equilibrium_tolerance) + "), largest at " +
-          block_name(states[worst].id) +
-          "; check that the blocks in contact at the start rest on a support, or set "
-          "initial_equilibrium to false");
-    }
-    relax_once();
-  }
+  const std::vector<BlockState> start = states;
+  const std::vector<FrictionRecord> start_friction = friction;
+  const std::vector<std::size_t> unsettled = settle_in_rounds<StabilityError>(
+      params.initial_equilibrium, resting.adjacent, fixed, [&](const std::vector<char>& moving) {
+        SettleRound round = newton(moving, resting);
+        if (round.unsettled.empty()) return round;
+        // Back to the start for the next round: positions, stresses and springs.
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+          if (!moving[i]) continue;
+          states[i] = start[i];
+          rebuild_parts(i);
+          refresh(i);
+        }
+        friction = start_friction;
+        evaluate_forces();
+        return round;
+      });
   settling = false;
+  for (const std::size_t i : unsettled) equilibrium.unsettled.push_back(states[i].id);
+  if (equilibrium.blocks == 0) equilibrium.converged = true;  // nothing left to settle
   for (Body& b : bodies) b.increment = {};
   // Released: the forces under the real friction law, and the energies counted from here.
   evaluate_forces();
   contact_work = friction_dissipated = damping_dissipated = dashpot_dissipated = 0.0;
   for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].initial_centroid = states[i].centroid;
+}
+
+// The linear model of one Newton iteration (dda2d.hpp): the contact line of every pair of parts
+// that is closed or may close (contact_springs.hpp), and where along it the gap is closed, now
+// (`now`) and in the open-close iteration's latest solution (`part`). A pair that overlaps has
+// its measured contact (`contact`, an index into `contacts`) and, in stick, its friction spring.
+struct Dda2d::Impl::LinearModel {
+  struct Line {
+    std::size_t cp = 0, tp = 0;
+    std::size_t contact = no_record;
+    contact::ContactLine geometry;
+    double kn = 0.0, H = 1.0;
+    contact::Interval now, part;
+    double kt = 0.0;  // the locked friction spring, along the tangent (0: frictionless)
+  };
+  std::vector<Line> lines;
+};
+
+// The lines of the model at the current configuration: the pairs resting at the start and the
+// candidates of the last contact pass (their boxes overlap), with a contact line within a step's
+// reach.
+void Dda2d::Impl::build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
+                              LinearModel& model) const {
+  model.lines.clear();
+  std::vector<std::pair<PartPair, std::size_t>> near;  // with the measured contact, if any
+  std::size_t k = 0;
+  for (const PartContact& c : candidates) near.emplace_back(c.parts, c.touching ? k++ : no_record);
+  for (const PartPair& parts : resting) near.emplace_back(parts, no_record);
+  std::sort(near.begin(), near.end());
+  for (std::size_t n = 0; n < near.size(); ++n) {
+    if (n > 0 && near[n].first == near[n - 1].first) continue;  // the measured one comes first
+    const auto [i, j, p, q] = near[n].first;
+    if (!moving[i] && !moving[j]) continue;
+    const double reach = newton_step_cap * (bodies[i].inradius + bodies[j].inradius);
+    const std::optional<contact::ContactLine> geometry =
+        contact::contact_line(bodies[i].parts.polygons[p], bodies[j].parts.polygons[q], reach);
+    if (!geometry) continue;
+    const PairLaw& pair = laws[law_index(i, j)];
+    LinearModel::Line& line = model.lines.emplace_back();
+    line.cp = i;
+    line.tp = j;
+    line.contact = near[n].second;
+    line.geometry = *geometry;
+    line.kn = pair.normal.kn;
+    line.H = pair.normal.H;
+    // Every closed pair has its locked friction spring: a loaded one's is in F with its
+    // stretch, a pair in touch starts one at its first overlap (as Table 1 of seed 001 starts a
+    // new contact locked).
+    if (pair.friction) line.kt = pair.friction->kt;
+    // The open-close iteration starts from the parts that overlap or touch (to resting_gap):
+    // from the parts that overlap alone, a column of blocks in touch would close one joint
+    // per solve.
+    const double touch = resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter);
+    line.now = contact::closed_part(line.geometry);
+    line.part = contact::closed_part(line.geometry, -touch, -touch);
+  }
+}
+
+namespace {
+
+// T^T direction of block b's point `at` (its generalized force per unit force along direction).
+Vector6 generalized(const BlockState& b, Point2 at, Vector2 direction) {
+  return detail::transform_transpose({at.x - b.centroid.x, at.y - b.centroid.y}, direction);
+}
+
+}  // namespace
+
+// Solves the model for Δd with the closed parts as they stand (dda2d.hpp):
+//   (K + damping diag K) Δd = F + Σ_part k (-g) G - Σ_now k (-g) G - (friction of a loaded pair
+//   the model opens),
+// F the engine's out-of-balance forces, K the blocks' S E, the Gauss springs of each line's
+// closed part and the friction springs of the loaded pairs still closed, plus the
+// regularisation. offset[i]: block i's first unknown (-1: not one).
+void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                              const LinearModel& model, double damping, Eigen::VectorXd& delta) const {
+  const Eigen::Index unknowns = delta.size();
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd rhs(unknowns);
+  double kn_scale = 0.0;
+  for (const PairLaw& l : laws) kn_scale = std::max(kn_scale, l.normal.kn / l.normal.H);
+  const auto dofs = [&](std::size_t b) -> Eigen::Index { return states[b].rigid ? 3 : 6; };
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!moving[i]) continue;
+    const Eigen::Index o = offset[i];
+    for (Eigen::Index k = 0; k < dofs(i); ++k) rhs(o + k) = bodies[i].force[static_cast<std::size_t>(k)];
+    const double k = newton_regularization * kn_scale * bodies[i].perimeter;
+    const double arm2 = gyration_squared(i);
+    for (Eigen::Index r = 0; r < dofs(i); ++r) triplets.emplace_back(o + r, o + r, r < 2 ? k : k * arm2);
+    if (states[i].rigid) continue;
+    const Eigen::Matrix3d se = states[i].area * bodies[i].elasticity;
+    for (Eigen::Index r = 0; r < 3; ++r) {
+      for (Eigen::Index c = 0; c < 3; ++c) triplets.emplace_back(o + 3 + r, o + 3 + c, se(r, c));
+    }
+  }
+  // A force f along `direction` at `at`, on CP (and -f on TP); a spring of stiffness k there.
+  const auto add_force = [&](const LinearModel::Line& line, Point2 at, Vector2 direction, double f) {
+    for (const std::size_t b : {line.cp, line.tp}) {
+      if (!moving[b]) continue;
+      const Vector6 g = generalized(states[b], at, direction);
+      const double sign = b == line.cp ? f : -f;
+      for (Eigen::Index k = 0; k < dofs(b); ++k) rhs(offset[b] + k) += sign * g[static_cast<std::size_t>(k)];
+    }
+  };
+  const auto add_spring = [&](const LinearModel::Line& line, Point2 at, Vector2 direction, double k) {
+    const std::array<std::size_t, 2> block{line.cp, line.tp};
+    std::array<Vector6, 2> g;
+    for (std::size_t side = 0; side < 2; ++side) g[side] = generalized(states[block[side]], at, direction);
+    for (std::size_t a = 0; a < 2; ++a) {
+      if (!moving[block[a]]) continue;
+      for (std::size_t b = 0; b < 2; ++b) {
+        if (!moving[block[b]]) continue;
+        const double kab = a == b ? k : -k;
+        for (Eigen::Index r = 0; r < dofs(block[a]); ++r) {
+          for (Eigen::Index c = 0; c < dofs(block[b]); ++c) {
+            triplets.emplace_back(offset[block[a]] + r, offset[block[b]] + c,
+                                  kab * g[a][static_cast<std::size_t>(r)] * g[b][static_cast<std::size_t>(c)]);
+          }
+        }
+      }
+    }
+  };
+  for (const LinearModel::Line& line : model.lines) {
+    const Vector2 n = line.geometry.normal;
+    if (!line.part.empty()) {
+      for (const contact::GaussSpring& s : contact::gauss_springs(line.geometry, line.part, line.kn, line.H)) {
+        add_force(line, s.at, n, -s.k * s.gap);
+        add_spring(line, s.at, n, s.k);
+      }
+    }
+    if (!line.now.empty()) {
+      for (const contact::GaussSpring& s : contact::gauss_springs(line.geometry, line.now, line.kn, line.H)) {
+        add_force(line, s.at, n, s.k * s.gap);
+      }
+    }
+    if (line.kt == 0.0) continue;
+    if (line.contact == no_record) {
+      if (!line.part.empty()) {
+        const Point2 centre{0.5 * (line.geometry.from.x + line.geometry.to.x), 0.5 * (line.geometry.from.y + line.geometry.to.y)};
+        add_spring(line, centre, {-n.y, n.x}, line.kt);
+      }
+      continue;
+    }
+    const ContactState& c = contacts[line.contact];
+    if (line.part.empty()) {  // the model opens it: its friction goes too
+      const double f = std::hypot(c.friction_force.x, c.friction_force.y);
+      if (f > 0.0) add_force(line, c.point, {c.friction_force.x / f, c.friction_force.y / f}, -f);
+    } else {
+      add_spring(line, c.point, {-n.y, n.x}, line.kt);
+    }
+  }
+  if (damping > 0.0) {
+    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(unknowns);
+    for (const Eigen::Triplet<double>& t : triplets) {
+      if (t.row() == t.col()) diagonal(t.row()) += t.value();
+    }
+    for (Eigen::Index k = 0; k < unknowns; ++k) triplets.emplace_back(k, k, damping * diagonal(k));
+  }
+  Eigen::SparseMatrix<double> stiffness(unknowns, unknowns);
+  stiffness.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(stiffness);
+  if (solver.info() == Eigen::Success) delta = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !delta.allFinite()) {
+    throw StabilityError("dda2d: the initial equilibrium's stiffness could not be solved (" +
+                         std::to_string(unknowns) + " unknowns)");
+  }
+}
+
+// The open-close iteration of one Newton iteration: solve, then move each line's closed part to
+// where the solution leaves its gap negative, until no part moves by more than
+// part_tolerance of its line (at most max_open_close solves; after half of them a part only
+// grows, as the 3D engine keeps a closed contact closed: parts at exact touch that carry no
+// load otherwise alternate between a rounding's tension and a rounding's overlap).
+void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                                   LinearModel& model, double damping, Eigen::VectorXd& delta) const {
+  // CP's move from TP at `at`, along `direction`.
+  const auto relative = [&](const LinearModel::Line& line, Point2 at, Vector2 direction) {
+    double along = 0.0;
+    for (const std::size_t b : {line.cp, line.tp}) {
+      if (!moving[b]) continue;
+      const Vector6 g = generalized(states[b], at, direction);
+      double x = 0.0;
+      for (Eigen::Index k = 0; k < (states[b].rigid ? 3 : 6); ++k) x += g[static_cast<std::size_t>(k)] * delta(offset[b] + k);
+      along += b == line.cp ? x : -x;
+    }
+    return along;
+  };
+  const auto approach = [&](const LinearModel::Line& line, Point2 at) {
+    return relative(line, at, line.geometry.normal);
+  };
+  for (std::size_t round = 0;; ++round) {
+    solve_model(moving, offset, model, damping, delta);
+    std::size_t changes = 0;
+    for (LinearModel::Line& line : model.lines) {
+      contact::Interval part = contact::closed_part(line.geometry, approach(line, line.geometry.from),
+                                                    approach(line, line.geometry.to));
+      const bool late = 2 * round >= max_open_close;
+      if (late && !line.part.empty()) {
+        part = part.empty() ? line.part
+                            : contact::Interval{std::min(part.first, line.part.first), std::max(part.last, line.part.last)};
+      }
+      const bool moved = part.empty() != line.part.empty() ||
+                         (!part.empty() && std::abs(part.first - line.part.first) + std::abs(part.last - line.part.last) > part_tolerance);
+      if (moved) ++changes;
+      line.part = part;
+    }
+    if (changes == 0 || round + 1 == max_open_close) return;
+  }
+}
+
+// One round of the pre-solve over the blocks in `moving` (dda2d.hpp): Newton's iterations to
+// the tolerance, or the blocks without a static state.
+SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& resting) {
+  const std::size_t n = bodies.size();
+  std::vector<Eigen::Index> offset(n, -1);
+  Eigen::Index unknowns = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!moving[i]) continue;
+    offset[i] = unknowns;
+    unknowns += states[i].rigid ? 3 : 6;
+  }
+  if (reference_force(moving) == 0.0) return {};
+  equilibrium.ran = true;
+  equilibrium.blocks = 0;  // until the round settles them
+  LinearModel model;
+  Eigen::VectorXd delta(unknowns);
+  double damping = 0.0, previous_ratio = 0.0;
+  for (std::size_t iteration = 0;; ++iteration) {
+    std::size_t worst = 0;
+    const double reference = reference_force(moving);
+    equilibrium.ratio = out_of_balance(moving, reference, worst);
+    if (params.equilibrium_progress) params.equilibrium_progress(equilibrium.iterations, equilibrium.ratio);
+    if (equilibrium.ratio < params.equilibrium_tolerance) {
+      equilibrium.converged = true;
+      equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
+      return {};
+    }
+    if (iteration == newton_iterations) {
+      // Every block is held (none ran away), but Newton's steps no longer lower the ratio: a
+      // contact keeps crossing a kink (a part that opens and closes, a block rocking on a short
+      // line). Dynamic relaxation, which needs no tangent, finishes from the state reached.
+      equilibrium.converged = relax_to_tolerance(moving, resting);
+      equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
+      if (!equilibrium.converged && params.initial_equilibrium == InitialEquilibrium::strict) {
+        throw StabilityError("dda2d: the initial equilibrium was not reached in " + std::to_string(equilibrium.iterations) +
+                             " iterations: the out-of-balance force ratio is " + number(equilibrium.ratio) +
+                             " (tolerance " + number(params.equilibrium_tolerance) + "), largest at " +
+                             block_name(states[worst].id) + "; raise equilibrium_tolerance, or set "
+                             "initial_equilibrium to \"auto\" to start from the state reached");
+      }
+      return {};
+    }
+    ++equilibrium.iterations;
+    build_model(moving, resting.parts, model);
+    // Levenberg-Marquardt: an iteration that did not lower the ratio crossed a kink of the
+    // contacts (a part that opened or closed): the next step is damped by diag K, ten times
+    // more each time, and relaxed by three for each that lowers it.
+    if (iteration > 0) {
+      damping = equilibrium.ratio < previous_ratio ? damping / 3.0 : std::max(10.0 * damping, min_damping);
+    }
+    previous_ratio = equilibrium.ratio;
+    solve_open_close(moving, offset, model, damping, delta);
+    // The move of each block's farthest vertex, against its inradius.
+    SettleRound round;
+    double scale = 1.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      Body& b = bodies[i];
+      b.increment = {};
+      if (!moving[i]) continue;
+      for (Eigen::Index k = 0; k < (states[i].rigid ? 3 : 6); ++k) {
+        b.increment[static_cast<std::size_t>(k)] = delta(offset[i] + k);
+      }
+      double farthest = 0.0;
+      for (const Point2& v : states[i].vertices) {
+        const Point2& o = states[i].centroid;
+        const Vector2 u = detail::transform({v.x - o.x, v.y - o.y}, b.increment);
+        farthest = std::max(farthest, std::hypot(u.x, u.y));
+      }
+      if (farthest > b.inradius) {
+        if (round.unsettled.empty()) {
+          round.why = "dda2d: the initial equilibrium would move " + block_name(states[i].id) + " by " +
+                      number(farthest) + " m, more than its inradius (" + number(b.inradius) +
+                      " m): the blocks it rests on at the start do not hold it (it topples, slides or "
+                      "is unsupported), or its contacts are too soft for its weight (kn); set "
+                      "initial_equilibrium to \"auto\" to start it from its given state, or to false";
+        }
+        round.unsettled.push_back(i);
+      }
+      scale = std::min(scale, newton_step_cap * b.inradius / std::max(farthest, 1e-300));
+    }
+    if (!round.unsettled.empty()) return round;
+    if (scale < 1.0) {
+      for (Body& b : bodies) {
+        for (double& x : b.increment) x *= scale;
+      }
+    }
+    advance_friction_records();
+    for_each_movable([&](std::size_t i) {
+      if (moving[i]) move(i);
+    });
+    evaluate_forces();
+  }
+}
+
+// The pre-solve's finish (newton): dynamic relaxation ("Static analysis", dda2d.hpp) of the
+// blocks in `moving`, contacts locked, from the state reached, to the tolerance (true) or
+// relaxation_iterations. Its iterations count in Equilibrium::iterations.
+bool Dda2d::Impl::relax_to_tolerance(const std::vector<char>& moving, const Resting& resting) {
+  prepare_relaxation(moving, resting.adjacent);
+  for (std::size_t k = 0; k < relaxation_iterations; ++k, ++equilibrium.iterations) {
+    std::size_t worst = 0;
+    equilibrium.ratio = out_of_balance(moving, reference_force(moving), worst);
+    if (equilibrium.ratio < params.equilibrium_tolerance) return true;
+    if (params.equilibrium_progress && k % 100 == 0) params.equilibrium_progress(equilibrium.iterations, equilibrium.ratio);
+    relax_once();
+  }
+  return false;
 }
 
 // Static analysis: every movable block relaxes, under the scene's friction law.
@@ -1034,7 +1380,7 @@ void Dda2d::Impl::start_static_analysis() {
     moving[i] = !states[i].fixed;
     states[i].velocity = {};
   }
-  prepare_relaxation(std::move(moving), resting_pairs());
+  prepare_relaxation(std::move(moving), resting_pairs().adjacent);
 }
 
 double Dda2d::Impl::balance_ratio() const {

@@ -560,6 +560,7 @@ struct Dda3d::Impl {
   mutable struct {
     double detection = 0.0, solve = 0.0;
   } timing;
+  Equilibrium equilibrium;  // the pre-solve's report
   Step3dStats last;
   double friction_dissipated = 0.0, damping_dissipated = 0.0, numerical_dissipated = 0.0;
   kernel::PredicateCounters predicates;
@@ -587,8 +588,9 @@ struct Dda3d::Impl {
   bool replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
                const Eigen::Ref<const Eigen::VectorXd>& dj) const;
   void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
-             const std::vector<char>* settling = nullptr) const;
+             const std::vector<char>* settling = nullptr, double* residual = nullptr) const;
   void settle();
+  SettleRound settle_round(const std::vector<char>& settling);
   double largest_displacement(const Eigen::VectorXd& d) const;
   std::pair<double, std::size_t> largest_rotation(const Eigen::VectorXd& d) const;
   void accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations, double numerical);
@@ -664,7 +666,7 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
                                 " m at the start; expected at most the contact detection range " + number(range) +
                                 " m (2 x max_displacement_ratio x the scene's size), within which the penalty acts");
   }
-  if (params.initial_equilibrium) settle();
+  if (params.initial_equilibrium != InitialEquilibrium::off) settle();
   const Energies3d e = energies();
   start_total = e.total();
   start_kinetic = e.kinetic;
@@ -672,29 +674,36 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
   start_contact = e.contact;
 }
 
-// The initial equilibrium (header): the blocks resting on a fixed block at the start, directly or
-// through other resting blocks, solved for static equilibrium with every closed constraint
-// locked, the open-close iteration deciding which close; then moved there, their stresses and
-// springs loaded, their velocities kept. Time and the energies' references start after it.
+// The initial equilibrium (header; dynamics/common/equilibrium.hpp): rounds over the blocks
+// resting on a fixed block at the start, directly or through other resting blocks.
 void Dda3d::Impl::settle() {
+  const WallTimer timer(equilibrium.seconds);
   const double resting = resting_gap * size;
-  std::vector<char> settling(blocks.size(), 0);
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (blocks[i].dof == 0) queue.push_back(i);
+  std::vector<std::vector<std::size_t>> adjacent(blocks.size());
+  for (const Constraint& k : constraints) {
+    if (k.kinematics.gap > resting) continue;
+    adjacent[k.a].push_back(k.b);
+    adjacent[k.b].push_back(k.a);
   }
-  while (!queue.empty()) {
-    const std::size_t i = queue.back();
-    queue.pop_back();
-    for (const Constraint& k : constraints) {
-      if (k.kinematics.gap > resting || (k.a != i && k.b != i)) continue;
-      const std::size_t j = k.a == i ? k.b : k.a;
-      if (blocks[j].dof == 0 || settling[j]) continue;
-      settling[j] = 1;
-      queue.push_back(j);
-    }
-  }
-  if (std::none_of(settling.begin(), settling.end(), [](char c) { return c != 0; })) return;
+  std::vector<char> fixed(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) fixed[i] = blocks[i].dof == 0;
+  const std::vector<std::size_t> unsettled = settle_in_rounds<Stability3dError>(
+      params.initial_equilibrium, adjacent, fixed, [this](const std::vector<char>& settling) {
+        return settle_round(settling);
+      });
+  for (const std::size_t i : unsettled) equilibrium.unsettled.push_back(blocks[i].spec.id);
+  if (equilibrium.blocks == 0) equilibrium.converged = true;  // nothing left to settle
+}
+
+// One round: the blocks marked in `settling` solved for static equilibrium with every closed
+// constraint locked, the open-close iteration deciding which close; then moved there, their
+// stresses and springs loaded, their velocities kept. Time and the energies' references start
+// after it. Or, leaving every block where it was, the blocks without a static state: those the
+// solve would move farther than a step may, or those of the contacts the open-close iteration
+// could not settle.
+SettleRound Dda3d::Impl::settle_round(const std::vector<char>& settling) {
+  const double resting = resting_gap * size;
+  equilibrium.ran = true;
   std::vector<Constraint> list = constraints;
   for (Constraint& k : list) {
     k.state.mode = k.kinematics.gap <= resting ? detail::ContactMode::locked : detail::ContactMode::open;
@@ -705,8 +714,13 @@ void Dda3d::Impl::settle() {
   double unused = 0.0;
   std::size_t iteration = 1;
   for (;; ++iteration) {
-    solve(list, d, unused, &settling);
+    ++equilibrium.iterations;
+    solve(list, d, unused, &settling, &equilibrium.ratio);
+    if (params.equilibrium_progress) {
+      params.equilibrium_progress(equilibrium.iterations, equilibrium.ratio);
+    }
     if (!d.allFinite()) throw Stability3dError("the initial equilibrium's static solve has no finite solution");
+    std::vector<char> changed_blocks(blocks.size(), 0);
     bool changed = false;
     for (Constraint& k : list) {
       const Block &ba = blocks[k.a], &bb = blocks[k.b];
@@ -733,33 +747,42 @@ void Dda3d::Impl::settle() {
         k.update.mode = detail::ContactMode::locked;
         k.update.normal_force = -k.law.kn * (k.update.gap - k.state.offset);
       }
-      changed = changed || (k.state.mode == detail::ContactMode::open) != (k.update.mode == detail::ContactMode::open);
+      if ((k.state.mode == detail::ContactMode::open) != (k.update.mode == detail::ContactMode::open)) {
+        changed = true;
+        changed_blocks[k.a] = changed_blocks[k.b] = 1;
+      }
     }
     if (!changed) break;
     if (iteration == params.max_open_close) {
-      throw Stability3dError("the initial equilibrium does not settle: the open-close iteration of its static solve "
-                             "does not converge in " + std::to_string(params.max_open_close) +
-                             " iterations, so the blocks resting on each other at the start have no static "
-                             "equilibrium even with their contacts locked against sliding (a scene meant to "
-                             "collapse); set \"initial_equilibrium\": false to start from the given state");
+      SettleRound round;
+      for (std::size_t i = 0; i < blocks.size(); ++i) {
+        if (settling[i] && changed_blocks[i]) round.unsettled.push_back(i);
+      }
+      round.why = "the initial equilibrium does not settle: the open-close iteration of its static solve does "
+                  "not converge in " + std::to_string(params.max_open_close) + " iterations at " +
+                  block_name(blocks[round.unsettled.front()].spec.id) +
+                  ", which has no static equilibrium where it rests at the start even with its contacts locked "
+                  "against sliding; set \"initial_equilibrium\": \"auto\" to start it from its given state, "
+                  "or false";
+      return round;
     }
     for (Constraint& k : list) detail::next_iteration(k.state, k.update);
   }
-  const double moved = largest_displacement(d);
-  if (moved > params.max_displacement_ratio * size) {
-    std::size_t worst = 0;
-    double largest = -1.0;
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      if (!settling[i]) continue;
-      const double norm = d.segment(static_cast<Eigen::Index>(blocks[i].offset), 3).norm();
-      if (norm > largest) largest = norm, worst = i;
+  const double limit = params.max_displacement_ratio * size;
+  SettleRound round;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!settling[i]) continue;
+    const double moved = d.segment(static_cast<Eigen::Index>(blocks[i].offset), 3).norm();
+    if (moved <= limit) continue;
+    if (round.unsettled.empty()) {
+      round.why = "the initial equilibrium would move " + block_name(blocks[i].spec.id) + " by " + number(moved) +
+                  " m, more than max_displacement_ratio x size = " + number(limit) +
+                  " m: the blocks it rests on at the start do not hold it (it topples, slides or is unsupported); "
+                  "set \"initial_equilibrium\": \"auto\" to start it from its given state, or false";
     }
-    throw Stability3dError("the initial equilibrium would move " + block_name(blocks[worst].spec.id) + " by " +
-                           number(largest) + " m, more than max_displacement_ratio x size = " +
-                           number(params.max_displacement_ratio * size) +
-                           " m: the blocks it rests on at the start do not hold it (set \"initial_equilibrium\": "
-                           "false to start without the pre-solve)");
+    round.unsettled.push_back(i);
   }
+  if (!round.unsettled.empty()) return round;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (!settling[i]) continue;
     move(i, d.segment(static_cast<Eigen::Index>(blocks[i].offset), blocks[i].dof));
@@ -768,6 +791,9 @@ void Dda3d::Impl::settle() {
   for (Constraint& k : list) detail::commit_step(k.state, k.update);
   constraints = std::move(list);
   constraints = detect();
+  equilibrium.converged = true;
+  equilibrium.blocks = static_cast<std::size_t>(std::count(settling.begin(), settling.end(), 1));
+  return {};
 }
 
 void Dda3d::Impl::validate_law() const {
@@ -1096,8 +1122,9 @@ std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
 // equilibrium (no inertia: K D = F_g - V σ + F_c, with a stiffness of settle_regularization times
 // the inertia term tying them to where they are, so that a mode their contacts leave free is
 // found as a large displacement instead of a singular matrix); the others keep their place.
+// `residual`, when given: |A d - rhs| / |rhs| of the solved system (0 when rhs = 0).
 void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
-                        const std::vector<char>* settling) const {
+                        const std::vector<char>* settling, double* residual) const {
   const auto n = static_cast<Eigen::Index>(unknowns);
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
@@ -1208,6 +1235,10 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
   if (!solved) {
     d = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
     return;
+  }
+  if (residual != nullptr) {
+    const double load = rhs.norm();
+    *residual = load > 0.0 ? (a * d - rhs).norm() / load : 0.0;
   }
   numerical = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -1564,6 +1595,7 @@ void Dda3d::step() {
 }
 
 double Dda3d::time() const noexcept { return impl_->time; }
+const Equilibrium& Dda3d::initial_equilibrium() const noexcept { return impl_->equilibrium; }
 std::size_t Dda3d::steps() const noexcept { return impl_->steps; }
 const std::vector<Block3dState>& Dda3d::blocks() const noexcept { return impl_->states; }
 const Step3dStats& Dda3d::last_step() const noexcept { return impl_->last; }

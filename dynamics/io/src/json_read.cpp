@@ -119,6 +119,13 @@ bool JsonReader::boolean(const json& value, const std::string& path,
   return value.get<bool>();
 }
 
+InitialEquilibrium JsonReader::initial_equilibrium(const json& value, const std::string& path,
+                                                   std::string_view expected) const {
+  if (value.is_boolean()) return value.get<bool>() ? InitialEquilibrium::strict : InitialEquilibrium::off;
+  if (value.is_string() && value.get_ref<const std::string&>() == "auto") return InitialEquilibrium::automatic;
+  fail_expected(path, expected, value);
+}
+
 const std::string& JsonReader::string(const json& value, const std::string& path,
                                       std::string_view expected) const {
   if (!value.is_string()) fail_expected(path, expected, value);

@@ -153,4 +153,10 @@ void SvgCanvas::open(std::ostream& out, double time) const {
       << "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
 }
 
+nlohmann::ordered_json equilibrium_json(const Equilibrium& e) {
+  if (!e.ran) return nullptr;
+  return {{"blocks", e.blocks},   {"iterations", e.iterations}, {"ratio", e.ratio},
+          {"converged", e.converged}, {"seconds", e.seconds},     {"unsettled", e.unsettled}};
+}
+
 }  // namespace rockcontact::dynamics::output_text

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "rockcontact/dynamics/equilibrium.hpp"
+
 namespace rockcontact::dynamics::output_text {
 
 // Shortest text that reads back as the same double ("0.1", "1e-05", "-3.25").
@@ -52,6 +54,10 @@ void create_directory(const std::filesystem::path& dir);
 
 // `document` indented by 2 spaces, written through an AtomicFile (summary.json).
 void write_json(const std::filesystem::path& file, const nlohmann::ordered_json& document);
+
+// Every engine's "initial_equilibrium" of summary.json: null when no block started resting on
+// a support, else {blocks, iterations, ratio, converged, seconds, unsettled [ids]}.
+nlohmann::ordered_json equilibrium_json(const Equilibrium& e);
 
 // The last keys of every summary.json: "blocks" (the ids of `blocks`, each with an `id`, in
 // scene order), "tracked" (`tracked`) and "frames" (`frames`).

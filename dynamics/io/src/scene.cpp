@@ -31,7 +31,9 @@ constexpr JsonField scene_fields[] = {
     {"plane", false, "one of \"stress\", \"strain\""},
     {"damping", false, "the mass damping alpha in 1/s, a finite number >= 0"},
     {"initial_equilibrium", false,
-     "true or false: settle the contacts present at the start before the run (default true)"},
+     "\"auto\", true or false: settle the blocks resting at the start before the run; \"auto\" "
+     "(the default) starts the blocks without a static state from their given state, true "
+     "refuses them"},
     {"analysis", false, "one of \"dynamic\", \"static\""},
     {"static_tolerance", false,
      "the out-of-balance force ratio at which a static analysis stops, a number in (0, 1)"},
@@ -213,8 +215,8 @@ class SceneParser {
     }
     if (document.contains("initial_equilibrium")) {
       scene.params.initial_equilibrium =
-          reader_.boolean(document.at("initial_equilibrium"), "initial_equilibrium",
-                          expected(scene_fields, "initial_equilibrium"));
+          reader_.initial_equilibrium(document.at("initial_equilibrium"), "initial_equilibrium",
+                                      expected(scene_fields, "initial_equilibrium"));
     }
   }
 

@@ -27,7 +27,9 @@ constexpr JsonField scene_fields[] = {
     {"time", true, "an object {\"dt\", \"duration\", \"max_displacement_ratio\", \"max_rotation_deg\"}"},
     {"gravity", false, "the gravity [gx, gy, gz] in m/s², three finite numbers"},
     {"initial_equilibrium", false,
-     "true or false: settle the blocks resting at the start before the run (default true)"},
+     "\"auto\", true or false: settle the blocks resting at the start before the run; \"auto\" "
+     "(the default) starts the blocks without a static state from their given state, true "
+     "refuses them"},
     {"analysis", false, "one of \"dynamic\", \"static\" (velocities zeroed after every step)"},
     {"materials", true,
      "an object {name: {\"density\", \"youngs_modulus\", \"poisson_ratio\"}, ...}"},
@@ -168,7 +170,7 @@ class Scene3dParser {
 
   void analysis(const json& document, Scene3d& scene) const {
     if (document.contains("initial_equilibrium")) {
-      scene.params.initial_equilibrium = reader_.boolean(document.at("initial_equilibrium"), "initial_equilibrium",
+      scene.params.initial_equilibrium = reader_.initial_equilibrium(document.at("initial_equilibrium"), "initial_equilibrium",
                                                          expected(scene_fields, "initial_equilibrium"));
     }
     if (document.contains("analysis")) {

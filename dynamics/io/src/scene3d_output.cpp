@@ -349,6 +349,7 @@ ordered_json run3d_summary(const Scene3d& scene, const Run3dReport& report) {
   out["step_cuts"] = report.step_cuts;
   out["predicates"] = predicates_json(report.predicates);
   out["max_penetration"] = report.max_penetration;
+  out["initial_equilibrium"] = output_text::equilibrium_json(report.equilibrium);
   output_text::add_blocks_and_frames(out, scene.blocks, scene.track, report.frames);
   return out;
 }
@@ -357,6 +358,7 @@ Run3dReport run_scene3d(const Scene3d& scene, const Run3dOptions& options) {
   RunClock clock;
   Run3dReport report;
   Dda3d simulation(scene.blocks, scene.law, scene.params);
+  report.equilibrium = simulation.initial_equilibrium();
   std::optional<Scene3dRecorder> recorder;
   if (!options.out_dir.empty()) clock.output([&] { recorder.emplace(scene, options.out_dir); });
   const auto record = [&] {

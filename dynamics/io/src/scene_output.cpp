@@ -287,10 +287,7 @@ ordered_json run_summary(const Scene& scene, const RunReport& report) {
   out["predicates"] = {{"calls", report.predicates.total_calls()},
                        {"fallbacks", report.predicates.total_fallbacks()}};
   out["max_penetration"] = report.max_penetration;
-  const Equilibrium& e = report.equilibrium;
-  out["initial_equilibrium"] =
-      e.ran ? ordered_json{{"blocks", e.blocks}, {"iterations", e.iterations}, {"ratio", e.ratio}}
-            : ordered_json(nullptr);
+  out["initial_equilibrium"] = output_text::equilibrium_json(report.equilibrium);
   if (scene.params.analysis == Analysis::static_equilibrium) {
     ordered_json history = ordered_json::array();
     for (const auto& [step, ratio] : report.balance) history.push_back({step, ratio});

@@ -69,41 +69,46 @@
 //   * mass damping (eq. 5c, off by default as in the paper) is integrated implicitly in the
 //     second half kick, d'_{n+1} = (d'_{n+1/2} + h/2 M^-1 F_{n+1}) / (1 + alpha h/2).
 //
-// ## Initial equilibrium (not in seed 000)
-// A block released at zero tangential stretch under gravity is not in equilibrium: its springs
-// load from zero, overshoot to twice the static load and, when that overshoot exceeds the
-// friction limit, slide; a block on a slope then creeps downhill although phi > theta. Block
-// codes settle the initial contact forces first, and so does the constructor (unless
-// DdaParams::initial_equilibrium is false): the blocks connected to a fixed block through pairs
-// resting on each other at t = 0 (overlapping, touching, or apart by at most 10⁻⁶ of the smaller
-// perimeter, so that a block typed "on" a slope to 7 digits counts) are relaxed into static
-// equilibrium with gravity and their stresses, with every tangential spring locked (no slip),
-// and then released with their initial velocities. Blocks that start apart are untouched. The
-// method is dynamic relaxation: fictitious time steps of h = 1 with each block's mass scaled so
-// that a Gershgorin bound of its stiffness over all the contacts it can have gives omega h =
-// 1, under kinetic damping (whenever the assembly's fictitious kinetic energy falls, it has just
-// passed a minimum of the potential energy along its path, and every velocity is zeroed there),
-// until the out-of-balance force ratio
+// ## Initial equilibrium (not in seed 000; dynamics/common/equilibrium.hpp)
+// Unless DdaParams::initial_equilibrium is off, the constructor settles the blocks connected to
+// a fixed block through pairs resting on each other at t = 0 (overlapping, touching, or apart
+// by at most 10⁻⁶ of the smaller perimeter, so that a block typed "on" a slope to 7 digits
+// counts) into static equilibrium with gravity and their stresses, and releases them with their
+// initial velocities. Blocks that start apart are untouched. The method is Newton's on the
+// DDA's own system. The out-of-balance forces F(d) are the engine's (eq. 11's potential forces,
+// gravity, -S sigma, and every tangential spring locked, contact::Slip::locked: no slip). The
+// stiffness K stands for them: S E on the strains; along each contact line
+// (contact_springs.hpp) the distributed normal spring 2 kn / H over the part where the gap is
+// closed, at two Gauss points; the friction spring kt of each closed pair. Each iteration solves K Δd = F (Eigen's
+// sparse LDLᵀ) inside an open-close iteration that moves each line's closed part to where the
+// solution leaves its gap negative, then moves the blocks by Δd (at most a quarter of a block's
+// inradius at once) and evaluates F again. An iteration that does not lower the ratio is
+// followed by Levenberg-Marquardt damping (diag K). It stops when the out-of-balance force ratio
 //   R = max_i |F_i| / F_ref,   |F_i|² = F_x² + F_y² + (F_r0² + F_ex² + F_ey² + F_gxy²) / r_i²
-// (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest block
-// weight or normal contact force at the start, whichever is larger) is below the tolerance. The
-// iterations do not depend on the scene's dt (each block relaxes at its own stability limit) but
-// grow with the ratio of the stiffest to the softest mode: ~800 for a block on a slope (0.1 to
-// 20 m), ~5 000 for a 205-block jointed rock mass 13 blocks high, each costing about a step.
-// Cundall's local damping (each force component reduced by 0.8 |F_k| against its motion) took
-// 8 000-13 000 and 19 000 iterations on the same cases.
-// The friction records keep the locked stretch: the run starts with the static tangential forces
-// already in the springs. The time, the energies and their reference positions start after it. A
-// pre-solve that does not converge within 10⁵ iterations is an error naming the ratio and the
-// block most out of balance.
+// (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest
+// block weight or normal contact force of the settling blocks, in the configuration reached)
+// is below the tolerance, or after 100 iterations (Equilibrium::converged says which; strict
+// refuses the second). Rigid blocks settle in two or three iterations; a deformable jointed
+// mass takes tens to hundreds (docs/performance.md): the sides of its blocks, at exact touch,
+// carry forces of a rounding's overlap that open and close from one iteration to the next.
+// A block whose solve would move it by more than its inradius (its resting contacts do not
+// hold it: it topples, slides on a frictionless face or hangs in the air) has no static state
+// there. Automatic (the default): it starts from its given state, with the blocks resting on a
+// support only through it, and is named in Equilibrium::unsettled; the rest are solved again
+// from the start. Strict: it is an error naming it.
+// The friction records keep the locked stretch: the run starts with the static tangential
+// forces already in the springs, and a contact whose locked force exceeds its limit slips from
+// the first step. The time, the energies and their reference positions start after it.
 //
 // ## Static analysis (Analysis::static_equilibrium)
-// The same relaxation as a run of its own: every movable block, the scene's friction law (a
+// Dynamic relaxation, a run of its own: every movable block, the scene's friction law (a
 // contact beyond its limit slips), one iteration per step, until the caller finds
-// balance_ratio() below its tolerance. It replaces Shi's static analysis (a dynamic step with the
-// velocities zeroed after each), which at the scene's dt needs ~10⁶ steps for a 20 m block:
-// the relaxation steps each block at its own stability limit and damps without losing the
-// motion towards equilibrium. Velocities are zero throughout; the energies are not meaningful.
+// balance_ratio() (R above, F_ref at the start) below its tolerance. Each iteration is a step of
+// h = 1 with each block's mass scaled so that a Gershgorin bound of its stiffness over all the
+// contacts it can have gives omega h = 1, under kinetic damping (whenever the assembly's
+// fictitious kinetic energy falls, every velocity is zeroed). It replaces Shi's static analysis
+// (a dynamic step with the velocities zeroed after each), which at the scene's dt needs ~10⁶
+// steps for a 20 m block. Velocities are zero throughout; the energies are not meaningful.
 //
 // ## Critical time step
 // Velocity Verlet is stable for h < 2 / omega_max. The estimate of omega_max (documented
@@ -154,6 +159,7 @@
 
 #include "rockcontact/contact/friction/law.hpp"
 #include "rockcontact/contact/potential2d/potential_contact.hpp"
+#include "rockcontact/dynamics/equilibrium.hpp"
 #include "rockcontact/dynamics/material.hpp"
 #include "rockcontact/kernel/core/number_policy.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
@@ -166,9 +172,9 @@ using kernel::Vector2;
 
 enum class PlaneMode { stress, strain };
 
-// dynamic: the explicit DDA. static_equilibrium: each step is one iteration of the relaxation of
-// "Initial equilibrium" over every movable block, under the scene's friction law (contacts may
-// slip); the blocks' velocities stay zero and time only counts the steps.
+// dynamic: the explicit DDA. static_equilibrium: each step is one iteration of the dynamic
+// relaxation of "Static analysis" over every movable block, under the scene's friction law
+// (contacts may slip); the blocks' velocities stay zero and time only counts the steps.
 enum class Analysis { dynamic, static_equilibrium };
 
 struct BlockSpec {
@@ -215,18 +221,12 @@ struct DdaParams {
   std::size_t threads = 0;
   // Bring the contacts present at the start into static equilibrium with the loads before the
   // run ("Initial equilibrium" above), to an out-of-balance force ratio below the tolerance.
-  bool initial_equilibrium = true;
+  InitialEquilibrium initial_equilibrium = InitialEquilibrium::automatic;
   double equilibrium_tolerance = 1.0e-6;  // in (0, 1)
+  EquilibriumProgress equilibrium_progress;  // optional
   Analysis analysis = Analysis::dynamic;
 };
 
-// What the initial-equilibrium pre-solve did.
-struct Equilibrium {
-  bool ran = false;            // some blocks started in contact with a support
-  std::size_t blocks = 0;      // blocks it moved
-  std::size_t iterations = 0;  // relaxation iterations
-  double ratio = 0.0;          // the out-of-balance force ratio it reached
-};
 
 struct BlockState {
   std::string id;

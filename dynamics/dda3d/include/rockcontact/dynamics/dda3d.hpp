@@ -63,7 +63,8 @@
 //      every vertex moved by x -> c + u0 + R(r) (I + ε) (x - c) with the exact rotation R(r)
 //      (block_matrices3d.hpp): a spinning block keeps its volume, where the first-order map
 //      I + T would inflate it by 1 + |r|² a step (§5.2); the constraints' springs commit.
-// Initial equilibrium (Dda3dParams::initial_equilibrium, on by default; not in seed 001): a block
+// Initial equilibrium (Dda3dParams::initial_equilibrium, "auto" by default; not in seed 001;
+// dynamics/common/equilibrium.hpp): a block
 // released at zero tangential stretch under gravity is not in equilibrium; its springs load
 // from zero and overshoot, and near the friction limit the overshoot slides it (the §6.1
 // wedge crept 3 cm in 1 s at a factor 2 % below its factor of safety). The constructor first
@@ -73,7 +74,10 @@
 // whatever its friction, the open-close iteration deciding which close. The blocks move there
 // with their stresses and springs loaded and keep their initial velocities; the energies'
 // references start after it. A block its resting contacts do not hold (the solve would move it
-// farther than a step may) is an error naming it.
+// farther than a step may: it topples, slides or is unsupported), or whose contacts the
+// open-close iteration cannot settle, has no static state there: automatic starts it (and the
+// blocks resting on a support only through it) from its given state, names it in
+// initial_equilibrium().unsettled and solves the rest again; strict is an error naming it.
 // Contact damping (ContactLaw3d::damping_ratio ζ, off by default, as in 2D): each closed
 // constraint gets a dashpot along its normal, c_n = 2 ζ √(m kn), and while locked one along its
 // tangent plane, c_t = 2 ζ √(m kt), m = m_a m_b / (m_a + m_b) the pair's reduced mass (the movable
@@ -122,6 +126,7 @@
 #include <string>
 #include <vector>
 
+#include "rockcontact/dynamics/equilibrium.hpp"
 #include "rockcontact/dynamics/material.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
 #include "rockcontact/kernel/3d/point3.hpp"
@@ -188,7 +193,8 @@ struct Dda3dParams {
   double max_rotation_deg = 1.0;              // a block's rotation per step, degrees, in (0, 90)
   std::size_t max_open_close = 30;            // open-close iterations per step before a cut, >= 1
   double min_dt_ratio = 1.0e-6;               // the step may shrink to dt times this, in (0, 1)
-  bool initial_equilibrium = true;            // settle the resting blocks first (header)
+  InitialEquilibrium initial_equilibrium = InitialEquilibrium::automatic;  // (header)
+  EquilibriumProgress equilibrium_progress;  // optional
   bool static_analysis = false;               // velocities zeroed after every step (header)
   Solver3d solver = Solver3d::ldlt;
 };
@@ -269,6 +275,8 @@ class Dda3d {
   Energies3d energies() const;
   const Step3dStats& last_step() const noexcept;
   kernel::PredicateCounters predicate_counters() const noexcept;  // spent by this simulation
+  // What the constructor's pre-solve did (its ratio: the relative residual of the last solve).
+  const Equilibrium& initial_equilibrium() const noexcept;
 
  private:
   struct Impl;

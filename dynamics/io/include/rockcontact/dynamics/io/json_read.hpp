@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "rockcontact/dynamics/equilibrium.hpp"
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/material.hpp"
 #include "rockcontact/kernel/2d/point.hpp"
@@ -77,6 +78,9 @@ class JsonReader {
                        std::string_view expected) const;  // a JSON integer (no fraction)
   bool boolean(const nlohmann::json& value, const std::string& path,
                std::string_view expected) const;
+  // Every engine's "initial_equilibrium": true (strict), false (off) or "auto".
+  InitialEquilibrium initial_equilibrium(const nlohmann::json& value, const std::string& path,
+                                         std::string_view expected) const;
   const std::string& string(const nlohmann::json& value, const std::string& path,
                             std::string_view expected) const;
 

@@ -15,9 +15,11 @@
 //    "static_tolerance": 0 < R < 1                        (optional, default 1e-6: the static
 //                                                          run stops below this out-of-balance
 //                                                          force ratio)
-//    "initial_equilibrium": bool                          (optional, default true: the
-//                                                          contacts at the start are settled
-//                                                          first, dda2d.hpp)
+//    "initial_equilibrium": "auto" | true | false         (optional, default "auto": the
+//                                                          blocks resting at the start are
+//                                                          settled first, those without a
+//                                                          static state start as given; true
+//                                                          refuses them; dda2d.hpp)
 //    "materials": {name: {"density": kg/m³ > 0, "youngs_modulus": Pa > 0,
 //                         "poisson_ratio": -1 < nu < 0.5}, ...},
 //    "contact": {"law": "potential", "kn": Pa > 0,

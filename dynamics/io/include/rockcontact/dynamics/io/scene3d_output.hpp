@@ -60,6 +60,7 @@ struct Run3dReport {
   double output_seconds = 0.0;       // wall, writing files
   kernel::PredicateCounters predicates;  // spent by this simulation
   std::size_t frames = 0;                // VTK frames written
+  Equilibrium equilibrium;               // what the pre-solve did
 };
 
 // The summary.json document of a 3D run (keys in this order): scene, description, dimension
@@ -68,7 +69,9 @@ struct Run3dReport {
 // contact, friction_dissipated, numerical_dissipated, total} (Energies3d, J),
 // open_close_iterations {mean, max} per accepted step, step_cuts, predicates {calls,
 // interval_fallbacks, fallbacks, by_kind {cross, crossing_side, crossing_point, triple,
-// plane_side} each {calls, interval_fallbacks, fallbacks}}, max_penetration (m), blocks [ids],
+// plane_side} each {calls, interval_fallbacks, fallbacks}}, max_penetration (m),
+// initial_equilibrium (null, or {blocks, iterations, ratio, converged, seconds, unsettled}: the
+// open-close iterations of the pre-solve and its last solve's relative residual), blocks [ids],
 // tracked [ids], frames.
 nlohmann::ordered_json run3d_summary(const Scene3d& scene, const Run3dReport& report);
 

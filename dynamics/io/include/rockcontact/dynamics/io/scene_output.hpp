@@ -125,7 +125,8 @@ struct RunReport {
 // critical_time_step_source, H, H_rule, [restart {file, steps, time} for a resumed run], wall_seconds, simulation_seconds,
 // output_seconds, energy {start, end} each {kinetic, gravitational, strain, contact,
 // friction_dissipated, damping_dissipated, total}, predicates {calls, fallbacks},
-// max_penetration, initial_equilibrium {blocks, iterations, ratio} (null when no block started
+// max_penetration, initial_equilibrium {blocks, iterations, ratio, converged, seconds, unsettled
+// [ids]} (null when no block started
 // in contact with a support or the scene turned it off), [static {tolerance, converged,
 // iterations, ratio, history [[step, ratio], ...] at every recorded step} for a static
 // analysis], blocks [ids in frame order], tracked [ids], frames. A static analysis stops at the
