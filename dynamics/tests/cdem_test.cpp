@@ -2,7 +2,7 @@
 // The CDEM engine (dynamics/cdem.hpp) against seed 003's example and analytic solutions: the
 // exact first touch of two prisms, Saint-Venant's impact of two equal bars, a block resting on a
 // fixed block, a block sliding down a slope through clone nodes, rigid rotation, and the errors
-// of bad parameters.
+// of bad parameters and of blocks that start inside each other.
 
 #include "rockcontact/dynamics/cdem.hpp"
 
@@ -312,6 +312,63 @@ BOOST_AUTO_TEST_CASE(bad_parameters_and_blocks_name_the_field) {
   expect_error({block("a", rectangle(0, 0, 1, 1), 0.0)}, params(1.0e-6), "block 'a': mesh.max_edge");
   expect_error({block("cw", {{0, 0}, {0, 1}, {1, 1}, {1, 0}}, 0.5)}, params(1.0e-6), "block 'cw'");
   expect_error({block("nan", {{0, 0}, {1, 0}, {std::nan(""), 1}}, 0.5)}, params(1.0e-6), "block 'nan'");
+}
+
+// The engine's message for blocks built `sunk` m into a fixed floor ([-2, 2] x [-1, 0], a 1 m
+// square above it), or "" when it accepts them.
+std::string sunk_into_the_floor(double sunk) {
+  auto floor = block("floor", rectangle(-2.0, -1.0, 2.0, 0.0), 0.5);
+  floor.fixed = true;
+  const auto box = block("box", rectangle(-0.5, -sunk, 0.5, 1.0 - sunk), 0.25);
+  try {
+    dyn::Cdem cdem({floor, box}, params(1.0e-6));
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The number after `label` in `text`, or NaN.
+double number_after(const std::string& text, const std::string& label) {
+  const std::size_t at = text.find(label);
+  return at == std::string::npos ? std::nan("") : std::stod(text.substr(at + label.size()));
+}
+
+// Issue 30: a block built 0.2 m inside the floor sank through it, as the contact sees a node only
+// within the search tolerance (5 mm here) of an edge. The engine refuses it, naming both blocks,
+// the depth and the tolerance. The depth is that of the deepest boundary node inside the other
+// block: the box's bottom corners and the floor's nodes under the box are all 0.2 m deep. The
+// message prints 6 significant digits, hence 1e-6 relative on the numbers read back.
+BOOST_AUTO_TEST_CASE(a_block_inside_the_floor_is_refused_with_both_blocks_and_the_depth) {
+  const std::string message = sunk_into_the_floor(0.2);
+  BOOST_TEST_MESSAGE(message);
+  BOOST_TEST(message.find("block 'floor'") != std::string::npos);
+  BOOST_TEST(message.find("block 'box'") != std::string::npos);
+  BOOST_TEST(number_after(message, "overlap by ") == 0.2, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(number_after(message, "contact.search_tolerance (") == 5.0e-3, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(message.find("move them apart") != std::string::npos);
+}
+
+// The tolerance is the contact's reach, contact.search_tolerance = 5 mm: 4 mm in is accepted (the
+// contact finds those nodes and pushes them out), 6 mm in is refused with its depth.
+BOOST_AUTO_TEST_CASE(an_overlap_within_the_search_tolerance_is_accepted) {
+  BOOST_TEST(sunk_into_the_floor(4.0e-3) == "");
+  BOOST_TEST(number_after(sunk_into_the_floor(6.0e-3), "overlap by ") == 6.0e-3, boost::test_tools::tolerance(1e-6));
+}
+
+// Exact touch is no overlap: a block resting on the floor; and the two halves of a square cut
+// along an oblique joint, whose shared face's mesh nodes (Steiner points, rounded to doubles) lie
+// a rounding off its line (the deepest 7e-17 m inside the other half), far below the tolerance.
+// Two fixed blocks never meet in the contact: their overlap is not checked.
+BOOST_AUTO_TEST_CASE(blocks_in_exact_touch_are_accepted) {
+  BOOST_TEST(sunk_into_the_floor(0.0) == "");
+  const auto lower = block("lower", {{0.0, 0.0}, {1.0, 0.0}, {1.0, 0.73}, {0.0, 0.1}}, 0.1);
+  const auto upper = block("upper", {{0.0, 0.1}, {1.0, 0.73}, {1.0, 1.0}, {0.0, 1.0}}, 0.1);
+  BOOST_CHECK_NO_THROW(dyn::Cdem({lower, upper}, params(1.0e-6)));
+  auto a = block("a", rectangle(0.0, 0.0, 1.0, 1.0), 0.5);
+  auto b = block("b", rectangle(0.5, 0.5, 1.5, 1.5), 0.5);
+  a.fixed = b.fixed = true;
+  BOOST_CHECK_NO_THROW(dyn::Cdem({a, b}, params(1.0e-6)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

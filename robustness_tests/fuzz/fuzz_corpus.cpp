@@ -16,9 +16,10 @@
 //   OUT_DIR/scene3d_json/ the 3D scenes and cut documents (examples/scenes3d/*.json);
 //   OUT_DIR/scene_cdem_json/ the CDEM scenes (examples/scenes_cdem/*.json) and the CLI tests'
 //                         (dynamics/tests/data/scenes/cdem_*.json: one valid, one without a
-//                         mesh, one clockwise), plus a block resting under gravity on a fixed
-//                         base by the penalty law, and two blocks meeting with subdivided
-//                         elements and exact touch predicates, so that both laws have seeds.
+//                         mesh, one clockwise, one with a block inside another), plus a block
+//                         resting under gravity on a fixed base by the penalty law, and two
+//                         blocks meeting with subdivided elements and exact touch predicates,
+//                         so that both laws have seeds.
 //
 // The seed of the generators is fixed, so the corpus is the same on every run.
 

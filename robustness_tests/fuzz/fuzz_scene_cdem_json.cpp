@@ -9,7 +9,8 @@
 // critical step to the engine, so a scene whose meshes are estimated at most max_elements
 // elements then goes to Cdem: the constructor may refuse it with std::invalid_argument, whose
 // message must start with the field ("time.dt: ...", "contact.kn: ...") or the block
-// ("block 'a': ...") it names. A built engine runs the scene's steps, but at most max_steps and,
+// ("block 'a': ...") it names, or the two blocks that start inside each other ("block 'a' and
+// block 'b' overlap by ..."). A built engine runs the scene's steps, but at most max_steps and,
 // beyond min_steps, at most max_element_steps / elements of them (the small seeds touch within
 // their first 170 steps); a step may stop with CdemStabilityError. Anything else fails, and so does a
 // run whose report is inconsistent: time() other than steps() dt, an event outside [0, time()]
@@ -162,6 +163,11 @@ void check_refusal(const rd::SceneCdem& scene, const std::invalid_argument& e) {
   }
   for (const rd::CdemBlockSpec& b : scene.blocks) {
     if (what.starts_with("block '" + b.id + "': ") && what.size() > b.id.size() + 10) return;
+  }
+  for (const rd::CdemBlockSpec& a : scene.blocks) {
+    for (const rd::CdemBlockSpec& b : scene.blocks) {
+      if (what.starts_with("block '" + a.id + "' and block '" + b.id + "' overlap by ")) return;
+    }
   }
   rf::fail(target, "the engine refused the scene without naming a field or block: \"" + std::string(what) + "\"");
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -151,6 +152,47 @@ double smallest_altitude(const std::vector<double>& x, const std::vector<double>
     longest = std::max(longest, std::hypot(x[t[(k + 1) % 3]] - x[t[k]], y[t[(k + 1) % 3]] - y[t[k]]));
   }
   return 2.0 * triangle_area(x, y, t) / longest;
+}
+
+// Where a point lies against a block's boundary loop (a simple counter-clockwise polygon).
+enum class Location { inside, boundary, outside };
+
+// The winding number of the loop around p by Sunday's crossing rule: an upward edge that p is
+// strictly left of counts +1, a downward edge that p is strictly right of -1, each edge taken
+// half-open in y so that a vertex at p's height counts once. The only decisions are coordinate
+// comparisons (exact on doubles) and the kernel's orientation predicate (exact under Filtered), so
+// a node exactly on an edge is `boundary`, never inside or outside by a rounding.
+Location locate(const Point2& p, const std::vector<std::uint32_t>& loop, const std::vector<double>& x,
+                const std::vector<double>& y) {
+  int winding = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const Point2 a{x[loop[k]], y[loop[k]]};
+    const Point2 b{x[loop[(k + 1) % loop.size()]], y[loop[(k + 1) % loop.size()]]};
+    const kernel::Sign side = kernel::orientation<kernel::Filtered>(a, b, p);
+    if (side == kernel::Sign::zero && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+        std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y)) {
+      return Location::boundary;
+    }
+    if (a.y <= p.y) {
+      if (b.y > p.y && side == kernel::Sign::positive) ++winding;
+    } else if (b.y <= p.y && side == kernel::Sign::negative) {
+      --winding;
+    }
+  }
+  return winding != 0 ? Location::inside : Location::outside;
+}
+
+// The distance from p to the nearest point of the loop's edges, m (a construction in double).
+double distance_to_loop(const Point2& p, const std::vector<std::uint32_t>& loop, const std::vector<double>& x,
+                        const std::vector<double>& y) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const std::uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+    const Vec2 d{x[b] - x[a], y[b] - y[a]}, r{p.x - x[a], p.y - y[a]};
+    const double along = std::clamp(dot(r, d) / dot(d, d), 0.0, 1.0);
+    nearest = std::min(nearest, std::hypot(r[0] - along * d[0], r[1] - along * d[1]));
+  }
+  return nearest;
 }
 
 struct BlockData {
@@ -314,6 +356,7 @@ struct Cdem::Impl {
   void validate_params() const;
   void add_block(CdemBlockSpec spec);
   void build_adjacency();
+  void check_initial_overlaps() const;
   void check_critical_step();
 
   // Contact events of the pair counts (events.csv).
@@ -480,6 +523,69 @@ void Cdem::Impl::build_adjacency() {
   }
 }
 
+// Blocks that start inside each other. The contact only ever sees a boundary node on an edge of
+// another block or at most contact.search_tolerance inside it (find_touches, penalty_forces): a
+// node deeper than that is never found, and the blocks pass through each other. So an overlap is
+// measured as the contact would meet it, by the deepest boundary node of either block inside the
+// other (its distance to that block's boundary), and refused beyond the contact's reach, as the
+// 3D engine refuses an overlap beyond its detection range. (The 2D DDA allows half the smaller
+// inradius, what its potential pushes apart; CDEM's contact has no such reach.) Exact touch, the
+// nodes on the other block's edges (blocks resting on each other, jointed masses sharing faces),
+// is depth 0; a Steiner node of an oblique shared face, a rounding off its line, is far below any
+// usable tolerance. Two fixed blocks never meet in the contact and are not checked. The pairs
+// whose boxes meet are found by a sweep along x.
+void Cdem::Impl::check_initial_overlaps() const {
+  struct Box {
+    double lo_x = std::numeric_limits<double>::infinity(), lo_y = std::numeric_limits<double>::infinity();
+    double hi_x = -std::numeric_limits<double>::infinity(), hi_y = -std::numeric_limits<double>::infinity();
+  };
+  std::vector<Box> box(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    for (std::uint32_t n : blocks[i].boundary) {
+      box[i] = {std::min(box[i].lo_x, x[n]), std::min(box[i].lo_y, y[n]), std::max(box[i].hi_x, x[n]),
+                std::max(box[i].hi_y, y[n])};
+    }
+  }
+  struct Deepest {
+    double depth = 0.0;  // m
+    std::uint32_t node = 0, block = 0, other = 0;
+  } deepest;
+  const auto nodes_inside = [&](std::uint32_t from, std::uint32_t into) {
+    const Box& b = box[into];
+    for (std::uint32_t q : blocks[from].boundary) {
+      const Point2 p{x[q], y[q]};
+      if (p.x < b.lo_x || p.x > b.hi_x || p.y < b.lo_y || p.y > b.hi_y) continue;
+      if (locate(p, blocks[into].boundary, x, y) != Location::inside) continue;
+      const double depth = distance_to_loop(p, blocks[into].boundary, x, y);
+      if (depth > deepest.depth) deepest = {depth, q, from, into};
+    }
+  };
+  std::vector<std::uint32_t> order(blocks.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
+    return box[i].lo_x < box[j].lo_x || (box[i].lo_x == box[j].lo_x && i < j);
+  });
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t i = order[k];
+    for (std::size_t l = k + 1; l < order.size() && box[order[l]].lo_x <= box[i].hi_x; ++l) {
+      const std::uint32_t j = order[l];
+      if (blocks[i].spec.fixed && blocks[j].spec.fixed) continue;
+      if (box[j].hi_y < box[i].lo_y || box[i].hi_y < box[j].lo_y) continue;
+      nodes_inside(i, j);
+      nodes_inside(j, i);
+    }
+  }
+  if (deepest.depth <= params.contact.search_tolerance) return;
+  const std::string a = block_name(blocks[deepest.block].spec.id), b = block_name(blocks[deepest.other].spec.id);
+  throw std::invalid_argument(
+      a + " and " + b + " overlap by " + number(deepest.depth) + " m at the start (a boundary node of " + a +
+      " at (" + number(x[deepest.node]) + ", " + number(y[deepest.node]) + ") is that far inside " + b +
+      "), more than contact.search_tolerance (" + number(params.contact.search_tolerance) +
+      " m): the contact sees a node only within that distance of an edge, and the blocks would pass through "
+      "each other; move them apart so that they touch or overlap by less (blocks resting on each other may "
+      "share a face)");
+}
+
 // Central differences are stable for h < 2 / omega_max. For a constant-strain triangle with
 // lumped masses omega_max <= 2 c / h_min, with c the P-wave speed and h_min its smallest altitude
 // (the classical estimate: the time a wave takes to cross the element). A penalty spring kn
@@ -523,6 +629,7 @@ Cdem::Impl::Impl(std::vector<CdemBlockSpec> specs, CdemParams p) : params(p) {
   if (params.contact.kt == 0.0) params.contact.kt = params.contact.kn;
   for (CdemBlockSpec& s : specs) add_block(std::move(s));
   build_adjacency();
+  check_initial_overlaps();
   check_critical_step();
   const std::size_t n = node_total();
   x0 = x;

@@ -63,6 +63,13 @@
 // taking the reaction by the shape functions; a tangential spring kt, capped at tan(phi) fn + c Ac,
 // as the 2D DDA's elastoplastic Coulomb law. Touch events carry the exact crossing time.
 //
+// ## Initial overlaps
+// Blocks may start touching (exactly: a shared face, a block resting on another) but not inside
+// each other deeper than contact.search_tolerance, the contact's reach: a node deeper than that
+// is never found (under either law), and the blocks would pass through each other. The depth is
+// that of the deepest boundary node of either block inside the other, to that block's boundary,
+// the inside test by exact predicates, so that exact touch is depth 0.
+//
 // ## Critical step and monitor
 // dt must be below 2 / omega_max, omega_max² <= (2 c / h_min)² + 2 kn / m_min (h_min the smallest
 // altitude of an element, m_min the lightest boundary node, kn under the penalty law only); the
@@ -182,7 +189,9 @@ class Cdem {
  public:
   // Meshes the blocks and builds the engine. Throws std::invalid_argument naming the block or
   // the parameter for a bad polygon, a non-positive mesh size, a dt above the critical step
-  // (stating the critical value and the element that sets it), or bad contact parameters.
+  // (stating the critical value and the element that sets it), bad contact parameters, or two
+  // blocks (not both fixed) that start inside each other deeper than the search tolerance
+  // (naming both and the depth: "Initial overlaps" above).
   Cdem(std::vector<CdemBlockSpec> blocks, CdemParams params);
   ~Cdem();
   Cdem(Cdem&&) noexcept;
