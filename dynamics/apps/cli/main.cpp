@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <exception>
 #include <iomanip>
@@ -163,7 +164,7 @@ struct RunArgs {
   std::string out;
   std::size_t checkpoint_every = 0;
   std::string restart;
-  std::size_t threads = 0;  // DdaParams::threads: 0 is one per core
+  std::size_t threads = 0;  // the engine's params' threads: 0 is one per core
   std::optional<double> dt;        // overrides time.dt, s
   std::optional<double> duration;  // overrides time.duration, s
 };
@@ -261,8 +262,7 @@ void warn_equilibrium(const RunArgs& options, const dyn::Equilibrium& e) {
 // message), when one of them is given.
 bool without_2d_flags(const RunArgs& options, std::string_view applies) {
   for (const auto& [given, flag] : {std::pair{options.checkpoint_every > 0, "--checkpoint-every"},
-                                    std::pair{!options.restart.empty(), "--restart"},
-                                    std::pair{options.threads > 0, "--threads"}}) {
+                                    std::pair{!options.restart.empty(), "--restart"}}) {
     if (given) {
       std::cerr << "rockcontact: " << options.scene << ": " << flag << ' ' << applies << '\n';
       return false;
@@ -273,11 +273,11 @@ bool without_2d_flags(const RunArgs& options, std::string_view applies) {
 
 // A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
 int run_run3d(const RunArgs& options, const nlohmann::json& document) {
-  if (!without_2d_flags(options, "applies to 2D scenes only; the 3D engine has no checkpoints and "
-                                 "runs on one thread")) {
+  if (!without_2d_flags(options, "applies to 2D scenes only; the 3D engine has no checkpoints")) {
     return exit_bad_input;
   }
   dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
+  scene.params.threads = options.threads;
   ProgressBar bar;
   scene.params.equilibrium_progress = [&bar](std::size_t iterations, double ratio) {
     bar.update_presolve(iterations, ratio, 1e-12);
@@ -321,11 +321,11 @@ int run_run3d(const RunArgs& options, const nlohmann::json& document) {
 
 // A CDEM scene ("solver": "cdem") on the CDEM engine (dynamics/io/scene_cdem_output.hpp).
 int run_run_cdem(const RunArgs& options, const nlohmann::json& document) {
-  if (!without_2d_flags(options, "applies to 2D DDA scenes only; the CDEM engine has no "
-                                 "checkpoints, and its threads are OpenMP's (OMP_NUM_THREADS)")) {
+  if (!without_2d_flags(options, "applies to 2D DDA scenes only; the CDEM engine has no checkpoints")) {
     return exit_bad_input;
   }
-  const dyn::SceneCdem scene = dyn::parse_scene_cdem(document, options.scene);
+  dyn::SceneCdem scene = dyn::parse_scene_cdem(document, options.scene);
+  scene.params.threads = options.threads;
   ProgressBar bar;
   dyn::RunCdemOptions run_options;
   run_options.out_dir = options.out;
@@ -460,8 +460,8 @@ void add_run(CLI::App& app, int& exit_status) {
                   "Simulated time in s, overrides the scene's time.duration")
       ->check(CLI::Validator(positive_seconds, "SECONDS"));
   sub->add_option("--threads", options->threads,
-                  "Threads of the engine's parallel passes (0: one per core); the results do not "
-                  "depend on it")
+                  "Threads of the engine's parallel passes, in every engine (0: one per core the "
+                  "process may use); the results do not depend on it")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1024}))
       ->capture_default_str();
   sub->callback([options, &exit_status] { exit_status = run_run(*options); });
@@ -763,9 +763,24 @@ void add_report(CLI::App& app, int& exit_status) {
   sub->callback([options, &exit_status] { exit_status = run_report(*options); });
 }
 
+// libgomp's idle threads spin for about 300 000 iterations, waiting for the next parallel region,
+// before they sleep: on a core that another job holds, the spinning thread takes the time slices
+// the working one needs (a 3D run took 1.3 s instead of 0.54 s beside one busy process, 30 s
+// instead of 0.9 s on a machine loaded by other jobs as well: docs/performance.md). libgomp reads OMP_WAIT_POLICY and GOMP_SPINCOUNT once, when it is loaded,
+// before main(); so unless the user set either, the program sets OMP_WAIT_POLICY=passive (idle
+// threads sleep at once) and runs itself again with the same arguments. The variable is the guard:
+// the new process finds it set and goes on. If the exec fails, this one goes on as it is.
+void choose_wait_policy(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", "passive", 0) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv("OMP_WAIT_POLICY");  // not in force here, so not handed to child processes either
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  choose_wait_policy(argv);
   CLI::App app{"rockcontact: robust contact of polygonal rock blocks"};
   app.set_version_flag("--version", std::string("rockcontact ") + ROCKCONTACT_VERSION);
   app.require_subcommand(1);

@@ -12,6 +12,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include <omp.h>
+
 #include "rockcontact/kernel/2d/predicates.hpp"
 #include "rockcontact/kernel/2d/touch_time.hpp"
 #include "rockcontact/kernel/2d/triangle_mesh.hpp"
@@ -301,6 +303,7 @@ std::uint64_t pair_key(std::uint32_t x, std::uint32_t y) {
 
 struct Cdem::Impl {
   CdemParams params;
+  int thread_count = 1;  // of the element loops (CdemParams::threads)
   std::vector<BlockData> blocks;
   // Nodes, global numbering (block after block).
   std::vector<double> x, y, vx, vy, ax, ay, x_start, y_start, x0, y0, mass, inv_mass;
@@ -627,6 +630,7 @@ Cdem::Impl::Impl(std::vector<CdemBlockSpec> specs, CdemParams p) : params(p) {
   validate_params();
   require(!specs.empty(), "blocks: expected at least one block");
   if (params.contact.kt == 0.0) params.contact.kt = params.contact.kn;
+  thread_count = params.threads == 0 ? omp_get_max_threads() : static_cast<int>(params.threads);
   for (CdemBlockSpec& s : specs) add_block(std::move(s));
   build_adjacency();
   check_initial_overlaps();
@@ -1346,7 +1350,7 @@ void Cdem::Impl::initial_ties() {
 // patch gives its corners their forces.
 void Cdem::Impl::internal_forces(bool incremental) {
   const auto count = static_cast<std::int64_t>(elements.size());
-#pragma omp parallel for schedule(static) if (count >= parallel_threshold)
+#pragma omp parallel for schedule(static) if (count >= parallel_threshold) num_threads(thread_count)
   for (std::int64_t ei = 0; ei < count; ++ei) {
     const auto e = static_cast<std::size_t>(ei);
     // Fixed blocks are at rest, unstressed and force-free.
@@ -1360,7 +1364,7 @@ void Cdem::Impl::internal_forces(bool incremental) {
   }
   const auto nodes = static_cast<std::int64_t>(node_total());
   const double gx = params.gravity[0], gy = params.gravity[1];
-#pragma omp parallel for schedule(static) if (nodes >= parallel_threshold)
+#pragma omp parallel for schedule(static) if (nodes >= parallel_threshold) num_threads(thread_count)
   for (std::int64_t ii = 0; ii < nodes; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (inv_mass[i] == 0.0) {

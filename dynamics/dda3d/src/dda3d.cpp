@@ -546,6 +546,7 @@ struct Dda3d::Impl {
   Dda3dParams params;
   double size = 0.0;   // the scene's bounding-box diagonal at the start, m
   double range = 0.0;  // the contact detection range, m
+  int thread_count = 1;  // of the parallel passes (Dda3dParams::threads)
   double h = 0.0;      // the step the next attempt takes, s
   double time = 0.0;
   std::size_t steps = 0;
@@ -615,6 +616,7 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
               params.min_dt_ratio);
   if (params.max_open_close == 0) throw std::invalid_argument("max_open_close: expected at least 1 iteration");
   for (double g : params.gravity) check_range(std::isfinite(g), "gravity", "finite components", g);
+  thread_count = params.threads == 0 ? omp_get_max_threads() : static_cast<int>(params.threads);
   validate_law();
   if (specs.empty()) throw std::invalid_argument("blocks: expected at least one block");
   std::set<std::string> ids;
@@ -1082,11 +1084,11 @@ std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
   const std::vector<std::pair<std::size_t, std::size_t>> pairs = candidate_pairs();
   std::vector<std::vector<Constraint>> found(pairs.size());
   std::vector<Dropped> dropped(pairs.size());
-  std::vector<kernel::PredicateCounters> spent(static_cast<std::size_t>(omp_get_max_threads()));
+  std::vector<kernel::PredicateCounters> spent(static_cast<std::size_t>(thread_count));
   std::exception_ptr failure;
   // The pairs are independent: each thread fills its pairs' slots, merged below in pair order,
   // so the list is the same whatever the number of threads.
-#pragma omp parallel
+#pragma omp parallel num_threads(thread_count)
   {
     const kernel::PredicateCounters before = kernel::predicate_counters();
 #pragma omp for schedule(dynamic, 4)
@@ -1175,7 +1177,7 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
     c = end;
   }
   std::vector<PairTerms> terms(runs.size());
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(thread_count)
   for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(runs.size()); ++r) {
     const auto [first, last_one] = runs[static_cast<std::size_t>(r)];
     PairTerms& t = terms[static_cast<std::size_t>(r)];
@@ -1263,7 +1265,7 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
     // Each constraint's decision is its own: evaluated on the worker threads; `changed` is an
     // or over them, the same whatever the order.
     bool changed = false;
-#pragma omp parallel for schedule(static) reduction(|| : changed)
+#pragma omp parallel for schedule(static) reduction(|| : changed) num_threads(thread_count)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(list.size()); ++c) {
       Constraint& k = list[static_cast<std::size_t>(c)];
       const auto di = increments(blocks[k.a]);

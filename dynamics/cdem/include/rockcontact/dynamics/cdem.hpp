@@ -126,6 +126,10 @@ struct CdemParams {
   double thickness = 1.0;  // m, out of plane (masses, areas of contact)
   double damping = 0.0;    // 1/s >= 0: mass-proportional damping C = damping * M (eq. 1)
   CdemContactParams contact;
+  // Threads of the element loops (0: one per core, OpenMP's default team), which run on one
+  // thread below 4096 elements. The result does not depend on it: each element's forces are
+  // computed on their own and gathered per node in a fixed order.
+  std::size_t threads = 0;
 };
 
 // One row of events.csv: "touch" at the exact time the pair's first node meets an edge,

@@ -197,6 +197,10 @@ struct Dda3dParams {
   EquilibriumProgress equilibrium_progress;  // optional
   bool static_analysis = false;               // velocities zeroed after every step (header)
   Solver3d solver = Solver3d::ldlt;
+  // Threads of the parallel passes (0: one per core, OpenMP's default team). The result does
+  // not depend on it: each pair's constraints and terms, and each constraint's decision, are
+  // computed on their own and gathered in pair order.
+  std::size_t threads = 0;
 };
 
 struct Block3dState {
