@@ -42,8 +42,9 @@ constexpr std::ptrdiff_t parallel_threshold = 64;
 // examples/scenes/collapse_*.json, 0.8, 1.0 and 1.2 took 10 160, 5 065 and 4 481 iterations, and
 // 1.6 diverged (its stiffest modes exceed the Gershgorin estimate there): 1.0 keeps a margin.
 constexpr double relaxation_omega_h = 1.0;
-// Initial equilibrium (dda2d.hpp): Newton iterations before a block still out of balance counts
-// as having no static state; the largest move of one iteration, of the block's inradius; the
+// Initial equilibrium (dda2d.hpp): Newton iterations before dynamic relaxation finishes, and
+// the relaxation's (a block on a slope took ~700); the largest move of one iteration, of the
+// block's inradius; the smallest Levenberg-Marquardt damping once it is on; the
 // regularisation of the stiffness, of a block's own contact scale (kn / H times its perimeter),
 // which leaves a free mode a move 10⁹ times the contacts' and the solve finite. The open-close
 // iteration within one Newton iteration: its solves, and how far (of its line) a closed part
@@ -51,8 +52,8 @@ constexpr double relaxation_omega_h = 1.0;
 constexpr std::size_t newton_iterations = 30;
 constexpr std::size_t relaxation_iterations = 20000;
 constexpr double newton_step_cap = 0.25;
-constexpr double newton_regularization = 1.0e-9;
 constexpr double min_damping = 1.0e-3;
+constexpr double newton_regularization = 1.0e-9;
 constexpr std::size_t max_open_close = 20;
 constexpr double part_tolerance = 0.05;
 // Pairs apart by at most this fraction of the smaller perimeter count as resting on each other.
