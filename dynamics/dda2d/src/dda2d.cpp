@@ -281,6 +281,8 @@ struct Dda2d::Impl {
   double out_of_balance(const std::vector<char>& moving, double reference, std::size_t& worst) const;
   double gyration_squared(std::size_t i) const;
   double unbalanced_force(std::size_t i) const;
+  // A block's unknowns in the pre-solve: (u0, v0, r0), and (ex, ey, gxy) when deformable.
+  Eigen::Index unknowns_of(std::size_t i) const { return states[i].rigid ? 3 : 6; }
   // Geometry-dependent data after the vertices moved.
   void refresh(std::size_t i);
   // Forces and accelerations at the current instant.
@@ -1136,7 +1138,7 @@ void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector
   Eigen::VectorXd rhs(unknowns);
   double kn_scale = 0.0;
   for (const PairLaw& l : laws) kn_scale = std::max(kn_scale, l.normal.kn / l.normal.H);
-  const auto dofs = [&](std::size_t b) -> Eigen::Index { return states[b].rigid ? 3 : 6; };
+  const auto dofs = [&](std::size_t b) { return unknowns_of(b); };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!moving[i]) continue;
     const Eigen::Index o = offset[i];
@@ -1237,7 +1239,7 @@ void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::v
       if (!moving[b]) continue;
       const Vector6 g = generalized(states[b], at, direction);
       double x = 0.0;
-      for (Eigen::Index k = 0; k < (states[b].rigid ? 3 : 6); ++k) x += g[static_cast<std::size_t>(k)] * delta(offset[b] + k);
+      for (Eigen::Index k = 0; k < unknowns_of(b); ++k) x += g[static_cast<std::size_t>(k)] * delta(offset[b] + k);
       along += b == line.cp ? x : -x;
     }
     return along;
@@ -1274,7 +1276,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
   for (std::size_t i = 0; i < n; ++i) {
     if (!moving[i]) continue;
     offset[i] = unknowns;
-    unknowns += states[i].rigid ? 3 : 6;
+    unknowns += unknowns_of(i);
   }
   if (reference_force(moving) == 0.0) return {};
   equilibrium.ran = true;
@@ -1324,7 +1326,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       Body& b = bodies[i];
       b.increment = {};
       if (!moving[i]) continue;
-      for (Eigen::Index k = 0; k < (states[i].rigid ? 3 : 6); ++k) {
+      for (Eigen::Index k = 0; k < unknowns_of(i); ++k) {
         b.increment[static_cast<std::size_t>(k)] = delta(offset[i] + k);
       }
       double farthest = 0.0;
