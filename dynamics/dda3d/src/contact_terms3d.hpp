@@ -30,9 +30,10 @@
 //   open   -> closed (locked) when d1 < offset - tol, the spring then enters the next iteration;
 //   closed -> open when the normal spring's tension kn (d1 - offset) exceeds the tensile
 //             strength σt A + kn tol (with σt = 0: when d1 > offset + tol);
-// tol = ContactLaw3d::gap_tolerance, a hysteresis (0 in the steps; the initial equilibrium's
-// static solve uses 1e-9 of the scene's size) so that a contact at exact touch carrying no load
-// does not open and close from one iteration to the next.
+// tol = ContactLaw3d::gap_tolerance, a hysteresis (0 in the steps but for a contact that keeps
+// changing late in an open-close iteration, dda3d.cpp chatter_tolerance; the initial
+// equilibrium's static solve uses 1e-9 of the scene's size) so that a contact at exact touch
+// carrying no load does not open and close from one iteration to the next.
 //   closed -> locked or sliding by the Mohr-Coulomb test on the tangential spring: the trial
 //             stretch s = P (r_acc + Δr) is kept when kt |s| <= tan φ max(fn, 0) + c A, and is
 //             otherwise stretched only to that cap along s (sliding), never reset.
