@@ -1,15 +1,20 @@
 #include "rockcontact/kernel/3d/block_cutting.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <utility>
 
 #include "rockcontact/kernel/3d/contact_set.hpp"
+#include "rockcontact/kernel/3d/moments.hpp"
 #include "rockcontact/kernel/3d/plane_cut.hpp"
+#include "rockcontact/kernel/3d/tolerances.hpp"
 
 namespace rockcontact::kernel {
 namespace {
@@ -90,6 +95,251 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
   return i;
 }
 
+// The parts named "<prefix>_<k>" (block k, from 1), or "<prefix>_<k>.<j>" for part j of a block
+// of several.
+void name_blocks(std::vector<CutBlock3>& blocks, const std::string& id_prefix) {
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    std::vector<ConvexPolyhedron>& parts = blocks[b].parts;
+    const std::string name = id_prefix + "_" + std::to_string(b + 1);
+    for (std::size_t j = 0; j < parts.size(); ++j) {
+      parts[j] = parts[j].renamed(parts.size() == 1 ? name : name + "." + std::to_string(j + 1));
+    }
+  }
+}
+
+void check_options(const CutOptions3& options) {
+  if (!(std::isfinite(options.min_block_volume) && options.min_block_volume >= 0.0)) {
+    throw InvalidCut("min_block_volume",
+                     "expected a finite number of m³ >= 0, got " + number_text(options.min_block_volume));
+  }
+}
+
+using Vec3 = std::array<double, 3>;
+using Vec2 = std::array<double, 2>;
+
+Vec3 minus(const Point3& p, const Point3& o) { return {p.x - o.x, p.y - o.y, p.z - o.z}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// An axis-aligned box, m.
+struct Box3 {
+  Vec3 lo{INFINITY, INFINITY, INFINITY};
+  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
+  void add(const Box3& b) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], b.lo[i]);
+      hi[i] = std::max(hi[i], b.hi[i]);
+    }
+  }
+  // Do the boxes meet, each grown by `slack`?
+  bool meets(const Box3& b, double slack) const {
+    for (int i = 0; i < 3; ++i) {
+      if (lo[i] > b.hi[i] + 2 * slack || b.lo[i] > hi[i] + 2 * slack) return false;
+    }
+    return true;
+  }
+};
+
+Box3 bounding_box(const ConvexPolyhedron& part) {
+  Box3 box;
+  for (const Point3& p : part.vertices()) {
+    box.add({{p.x, p.y, p.z}, {p.x, p.y, p.z}});
+  }
+  return box;
+}
+
+// A face as given, ready for the shared-area test: its loop (counter-clockwise seen from outside),
+// its outward unit normal (Newell's sum of cross products about the first vertex) and the axis of
+// the normal's largest component.
+struct FaceLoop {
+  std::vector<Point3> loop;
+  Vec3 normal{};
+  int axis = 0;
+};
+
+FaceLoop face_loop(const ConvexPolyhedron& part, const ConvexPolyhedron::Face& face) {
+  FaceLoop f;
+  for (const std::uint32_t v : face) f.loop.push_back(part[v]);
+  for (std::size_t i = 1; i + 1 < f.loop.size(); ++i) {
+    const Vec3 a = minus(f.loop[i], f.loop[0]), b = minus(f.loop[i + 1], f.loop[0]);
+    f.normal[0] += a[1] * b[2] - a[2] * b[1];
+    f.normal[1] += a[2] * b[0] - a[0] * b[2];
+    f.normal[2] += a[0] * b[1] - a[1] * b[0];
+  }
+  const double length = std::sqrt(dot(f.normal, f.normal));
+  for (double& c : f.normal) c /= length;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(f.normal[i]) > std::abs(f.normal[f.axis])) f.axis = i;
+  }
+  return f;
+}
+
+// A part with its box and faces.
+struct PartFaces {
+  Box3 box;
+  std::vector<FaceLoop> faces;
+};
+
+PartFaces part_faces(const ConvexPolyhedron& part) {
+  PartFaces p{bounding_box(part), {}};
+  for (const auto& face : part.input_faces()) p.faces.push_back(face_loop(part, face));
+  return p;
+}
+
+// `loop` about `origin`, projected along `axis` onto the other two axes in cyclic order, so a
+// loop counter-clockwise about a normal whose `axis` component is positive stays
+// counter-clockwise; reversed when `reverse`.
+std::vector<Vec2> projected(const std::vector<Point3>& loop, const Point3& origin, int axis, bool reverse) {
+  std::vector<Vec2> out;
+  for (const Point3& p : loop) {
+    const Vec3 d = minus(p, origin);
+    out.push_back({d[(axis + 1) % 3], d[(axis + 2) % 3]});
+  }
+  if (reverse) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+// The part of convex polygon `subject` inside convex polygon `clip`, both counter-clockwise
+// (Sutherland-Hodgman: clipped by the half-plane left of each edge of `clip` in turn).
+std::vector<Vec2> clipped(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
+  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
+    const Vec2 &c0 = clip[e], &c1 = clip[(e + 1) % clip.size()];
+    const auto side = [&](const Vec2& p) {
+      return (c1[0] - c0[0]) * (p[1] - c0[1]) - (c1[1] - c0[1]) * (p[0] - c0[0]);
+    };
+    std::vector<Vec2> kept;
+    for (std::size_t i = 0; i < subject.size(); ++i) {
+      const Vec2 &p = subject[i], &q = subject[(i + 1) % subject.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) kept.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) {
+        const double t = sp / (sp - sq);
+        kept.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
+      }
+    }
+    subject = std::move(kept);
+  }
+  return subject;
+}
+
+double shoelace_area(const std::vector<Vec2>& polygon) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2 &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
+    twice += p[0] * q[1] - p[1] * q[0];
+  }
+  return twice / 2;
+}
+
+// The area faces a and b share (header, merge_small_blocks step 2), m²; 0 unless they lie on one
+// plane with opposite normals within shared_face_tolerance (`slack` is that times S).
+double shared_area(const FaceLoop& a, const FaceLoop& b, double slack) {
+  if (1.0 + dot(a.normal, b.normal) > shared_face_tolerance) return 0.0;
+  const Point3& origin = a.loop.front();
+  for (const Point3& p : b.loop) {
+    if (std::abs(dot(a.normal, minus(p, origin))) > slack) return 0.0;
+  }
+  // b's normal points the other way along the axis, so its projected loop turns the other way.
+  const bool positive = a.normal[a.axis] > 0;
+  const std::vector<Vec2> pa = projected(a.loop, origin, a.axis, !positive);
+  const std::vector<Vec2> pb = projected(b.loop, origin, a.axis, positive);
+  return shoelace_area(clipped(pa, pb)) / std::abs(a.normal[a.axis]);
+}
+
+// Merges the fragments of a set of blocks (header, merge_small_blocks steps 1-4).
+class FragmentMerger {
+ public:
+  FragmentMerger(std::vector<CutBlock3>& blocks, double min_volume)
+      : blocks_(blocks), min_volume_(min_volume), merged_(blocks.size(), false) {
+    Box3 all;
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      double volume = 0.0;
+      Box3 box;
+      std::vector<PartFaces>& faces = faces_.emplace_back();
+      for (const ConvexPolyhedron& part : blocks_[b].parts) {
+        volume += moments(part).volume;
+        faces.push_back(part_faces(part));
+        box.add(faces.back().box);
+      }
+      volumes_.push_back(volume);
+      boxes_.push_back(box);
+      all.add(box);
+      if (volume < min_volume_) queue_.insert({volume, b});
+    }
+    double size = 0.0;
+    for (int i = 0; i < 3; ++i) size = std::max(size, all.hi[i] - all.lo[i]);
+    slack_ = shared_face_tolerance * size;
+    least_area_ = shared_face_tolerance * size * size;
+  }
+
+  // The blocks left, in their order.
+  std::vector<CutBlock3> run() {
+    while (!queue_.empty()) {
+      const std::size_t fragment = queue_.begin()->second;
+      queue_.erase(queue_.begin());
+      const std::size_t neighbour = largest_neighbour(fragment);
+      if (neighbour != blocks_.size()) merge(fragment, neighbour);
+    }
+    std::vector<CutBlock3> left;
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      if (!merged_[b]) left.push_back(std::move(blocks_[b]));
+    }
+    return left;
+  }
+
+ private:
+  // The block `fragment` shares the largest face area with (ties to the lower index), or
+  // blocks_.size() for none.
+  std::size_t largest_neighbour(std::size_t fragment) const {
+    std::size_t best = blocks_.size();
+    double best_area = least_area_;
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      if (b == fragment || merged_[b] || !boxes_[b].meets(boxes_[fragment], slack_)) continue;
+      const double area = block_shared_area(fragment, b);
+      if (area > best_area) {
+        best = b;
+        best_area = area;
+      }
+    }
+    return best;
+  }
+
+  double block_shared_area(std::size_t i, std::size_t j) const {
+    double area = 0.0;
+    for (const PartFaces& p : faces_[i]) {
+      for (const PartFaces& q : faces_[j]) {
+        if (!p.box.meets(q.box, slack_)) continue;
+        for (const FaceLoop& a : p.faces) {
+          for (const FaceLoop& b : q.faces) area += shared_area(a, b, slack_);
+        }
+      }
+    }
+    return area;
+  }
+
+  void merge(std::size_t fragment, std::size_t neighbour) {
+    const bool queued = queue_.erase({volumes_[neighbour], neighbour}) > 0;
+    auto& parts = blocks_[neighbour].parts;
+    auto& moved = blocks_[fragment].parts;
+    parts.insert(parts.end(), std::make_move_iterator(moved.begin()), std::make_move_iterator(moved.end()));
+    faces_[neighbour].insert(faces_[neighbour].end(), std::make_move_iterator(faces_[fragment].begin()),
+                             std::make_move_iterator(faces_[fragment].end()));
+    boxes_[neighbour].add(boxes_[fragment]);
+    volumes_[neighbour] += volumes_[fragment];
+    merged_[fragment] = true;
+    if (queued && volumes_[neighbour] < min_volume_) queue_.insert({volumes_[neighbour], neighbour});
+  }
+
+  std::vector<CutBlock3>& blocks_;
+  double min_volume_;
+  std::vector<std::vector<PartFaces>> faces_;  // per block, per part
+  std::vector<double> volumes_;                // m³, per block
+  std::vector<Box3> boxes_;                    // per block
+  std::set<std::pair<double, std::size_t>> queue_;  // the fragments to process: (volume, block)
+  std::vector<bool> merged_;                        // per block: merged into another
+  double slack_ = 0.0;       // m: shared_face_tolerance S
+  double least_area_ = 0.0;  // m²: shared_face_tolerance S², the largest area that is none
+};
+
 }  // namespace
 
 void check_joint_sets(std::span<const JointSet3> sets) {
@@ -154,7 +404,8 @@ std::vector<CutPiece3> cut_by_joint_sets(std::span<const ConvexPolyhedron> regio
 
 template <NumberPolicy Policy>
 std::vector<CutBlock3> cut_region(std::span<const ConvexPolyhedron> region, std::span<const JointSet3> sets,
-                                  const std::string& id_prefix) {
+                                  const std::string& id_prefix, const CutOptions3& options) {
+  check_options(options);
   const std::vector<CutPiece3> pieces = cut_by_joint_sets<Policy>(region, sets);
   std::vector<ConvexPolyhedron> solids;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -186,15 +437,18 @@ std::vector<CutBlock3> cut_region(std::span<const ConvexPolyhedron> region, std:
     if (added) members.emplace_back();
     members[it->second].push_back(i);
   }
-  for (std::size_t b = 0; b < members.size(); ++b) {
-    const std::string name = id_prefix + "_" + std::to_string(b + 1);
+  for (const std::vector<std::size_t>& block_members : members) {
     CutBlock3& block = blocks.emplace_back();
-    for (std::size_t j = 0; j < members[b].size(); ++j) {
-      const std::size_t i = members[b][j];
-      const std::string part_name = members[b].size() == 1 ? name : name + "." + std::to_string(j + 1);
-      block.parts.push_back(solids[i].renamed(part_name));
-    }
+    for (const std::size_t i : block_members) block.parts.push_back(std::move(solids[i]));
   }
+  return merge_small_blocks(std::move(blocks), options, id_prefix);
+}
+
+std::vector<CutBlock3> merge_small_blocks(std::vector<CutBlock3> blocks, const CutOptions3& options,
+                                          const std::string& id_prefix) {
+  check_options(options);
+  if (options.min_block_volume > 0.0) blocks = FragmentMerger(blocks, options.min_block_volume).run();
+  name_blocks(blocks, id_prefix);
   return blocks;
 }
 
@@ -202,7 +456,7 @@ std::vector<CutBlock3> cut_region(std::span<const ConvexPolyhedron> region, std:
   template std::vector<CutPiece3> cut_by_joint_sets<P>(std::span<const ConvexPolyhedron>,             \
                                                        std::span<const JointSet3>);                    \
   template std::vector<CutBlock3> cut_region<P>(std::span<const ConvexPolyhedron>, std::span<const JointSet3>, \
-                                                const std::string&);
+                                                const std::string&, const CutOptions3&);
 ROCKCONTACT_FOR_EACH_POLICY(ROCKCONTACT_INSTANTIATE)
 #undef ROCKCONTACT_INSTANTIATE
 

@@ -29,7 +29,39 @@
 // faces are planar only to rounding, which ConvexPolyhedron accepts within
 // face_planarity_tolerance. Pieces of the same cell from different parts of a
 // non-convex region that meet face to face (a two-dimensional contact set) form one block,
-// given as its convex parts; the blocks are ordered by their first piece.
+// given as its convex parts; the blocks are ordered by their first piece. Last,
+// merge_small_blocks merges the blocks below options.min_block_volume into a neighbour.
+//
+// merge_small_blocks, the 3D counterpart of the 2D cut's step 5 (2d/block_cutting.hpp): a cut
+// leaves slivers beside blocks a thousand times their size, a few centimetres thick, and such a
+// sliver squeezed between its neighbours sets the time step of a whole simulation. Only when
+// min_block_volume > 0:
+//   1. A block's volume is the sum of its parts' (moments.hpp, on the rounded parts, in double).
+//      The blocks below min_block_volume (fragments) are processed smallest volume first, ties
+//      lower index (the order above) first.
+//   2. The face area two blocks share is summed over every pair of their parts' faces (as given)
+//      that lie on one plane with opposite outward normals, to rounding (shared_face_tolerance,
+//      tolerances.hpp, of S, the largest extent of the bounding box of all the blocks): the area
+//      of the intersection of the two convex face polygons, both projected along the axis of the
+//      normal's largest component, one clipped by the other (Sutherland-Hodgman), its shoelace
+//      area divided by that component of the unit normal. A sum of at most
+//      shared_face_tolerance S² counts as none (an edge or a vertex met to rounding). The pieces
+//      come from exact plane cuts with their vertices rounded once, so the faces two neighbours
+//      share coincide to rounding and their area is the shared face's to rounding.
+//   3. A fragment merges into the block it shares the largest area with (ties, equal doubles, to
+//      the lower index): the fragment's parts are appended to the neighbour's, and the merged
+//      block takes the neighbour's place and its volume the sum. The neighbour is at least as
+//      large as the fragment (every other block below the bound is, being processed later, and
+//      the rest are above it), so the merged block keeps the place of the larger of the two. It
+//      is processed again while still below the bound.
+//   4. A fragment that shares no face with any block stays as it is; merges only join blocks, so
+//      it never gains a neighbour later.
+//   5. The blocks left are numbered from 1 again in their order: the numbers of the blocks after
+//      a merged fragment move down by one.
+// A merged block is one body given as convex parts that meet face to face, the form the 3D
+// engine takes non-convex blocks in. With min_block_volume > 0, every block's volume (as step 1
+// computes it) is >= min_block_volume unless it has no neighbour. The blocks still tile the
+// region: a merge only regroups parts.
 //
 // Volume is conserved exactly: the pieces' exact volumes (HalfspacePolyhedron under Exact) sum
 // to the region's. The rounded blocks conserve it to rounding.
@@ -87,11 +119,27 @@ struct CutBlock3 {
                                         // "<prefix>_<k>.<j>" for part j of a non-convex block)
 };
 
-// The blocks for a scene, numbered from 1 (header). Throws InvalidCut, and InvalidCut naming
-// "block near (x, y, z)" when a piece is too thin for its rounded vertices to make a valid
-// polyhedron.
+// Options of cut_region.
+struct CutOptions3 {
+  // m³, finite >= 0. A block whose volume is below this is merged into the neighbouring block
+  // with which it shares the largest face area, repeatedly, until every block reaches it or has
+  // no neighbour (merge_small_blocks, header). 0: no merging.
+  double min_block_volume = 0.0;
+};
+
+// The blocks for a scene, numbered from 1 (header). Throws InvalidCut (also for
+// options.min_block_volume negative or not finite: the subject is "min_block_volume"), and
+// InvalidCut naming "block near (x, y, z)" when a piece is too thin for its rounded vertices to
+// make a valid polyhedron.
 template <NumberPolicy Policy>
 std::vector<CutBlock3> cut_region(std::span<const ConvexPolyhedron> region, std::span<const JointSet3> sets,
-                                  const std::string& id_prefix);
+                                  const std::string& id_prefix, const CutOptions3& options = {});
+
+// cut_region's merging alone (header), for a bound that depends on the unmerged blocks (a
+// scene's "auto"): `blocks` as cut_region made them, those below options.min_block_volume
+// merged, numbered from 1 again and their parts named after id_prefix as cut_region names them.
+// Throws InvalidCut naming "min_block_volume" for a bound negative or not finite.
+std::vector<CutBlock3> merge_small_blocks(std::vector<CutBlock3> blocks, const CutOptions3& options,
+                                          const std::string& id_prefix);
 
 }  // namespace rockcontact::kernel

@@ -35,6 +35,19 @@ inline constexpr double penetration_slack = 1e-10;
 // Dimensionless. Larger merges nearby contacts; smaller counts a shared vertex twice.
 inline constexpr double same_contact_tolerance = 1e-9;
 
+// Two faces of cut blocks are one shared face, to rounding, when merging small blocks asks how
+// much face two blocks share (block_cutting.hpp): their outward unit normals are opposite within
+// this (1 + n_a . n_b; 1e-9 is 4.5e-5 rad) and every vertex of one lies within this fraction of
+// the blocks' size S (the largest extent of their bounding box) of the other's plane; a shared
+// area of at most this times S² is none (an edge or a vertex met to rounding, a strip at most
+// this times S wide and S long). The faces of neighbouring pieces are made of the same rounded
+// vertices and the same exact plane, so they agree to a few ulps of the coordinates (1e-16
+// relative near the origin, 1e-10 for a 1 m scene 10^6 m from it), and each is planar within
+// face_planarity_tolerance of its block's size, which is smaller than S. Dimensionless. Larger
+// takes faces a few degrees or millimetres apart for one; smaller lets a face 10^7 m from the
+// origin miss its neighbour.
+inline constexpr double shared_face_tolerance = 1e-9;
+
 // A vertex off the feature of the other block it meets by no more than this fraction of the
 // pair's extent is on it but for rounding (contact_constraints.hpp, step 3): its candidate
 // planes are checked with cone_flush_sine, as at an exact touch, while its gap stays the exact
