@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE scene3d
 #include "rockcontact/dynamics/io/scene3d.hpp"
 
+#include <algorithm>
 #include <array>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -9,9 +10,12 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/dynamics/io/pairs_io.hpp"
 #include "rockcontact/dynamics/io/scene.hpp"
+#include "rockcontact/kernel/3d/moments.hpp"
 #include "rockcontact/testing/box_json.hpp"
 #include "rockcontact/testing/input_error.hpp"
 
@@ -395,4 +399,112 @@ BOOST_AUTO_TEST_CASE(a_region_is_cut_into_blocks) {
   } catch (const dyn::InputError& e) {
     BOOST_TEST(e.path() == "region.id_prefix");
   }
+}
+
+namespace {
+
+// The scene of a_region_is_cut_into_blocks: the box [-1, 1]² x [0, 2] in place of the cube, cut
+// by the joints z = 0.5 and 1.5 into slabs of 2, 4 and 2 m³.
+json region_scene() {
+  json document = contract_scene();
+  document["region"] = {{"box", {{"min", {-1, -1, 0}}, {"max", {1, 1, 2}}}},
+                        {"material", "soft"},
+                        {"group", "rock"},
+                        {"id_prefix", "r"}};
+  document["joint_sets"] = {{{"dip_deg", 0}, {"dip_direction_deg", 0}, {"spacing", 1}, {"offset", 0.5}}};
+  document["blocks"].erase(1);
+  document.erase("output");
+  return document;
+}
+
+double block_volume(const dyn::Block3dSpec& block) {
+  double volume = 0;
+  for (const auto& part : block.parts) volume += kernel::moments(part).volume;
+  return volume;
+}
+
+}  // namespace
+
+// region.min_block_volume: the slabs of region_scene.
+//   - Default ("auto"): 1e-3 of the region's 8 m³ per block of the cut's 3, 8/3e-3 m³: nothing
+//     merges.
+//   - 2.5 m³: both end slabs (2 m³) are below; the lower one goes first (equal volumes, lower
+//     index) into its only neighbour, the middle slab (6 m³ then), and the upper one follows
+//     into it: one block, "r_1", of 8 m³ in three parts, the middle slab's first.
+// Volumes of boxes are exact in double up to the tetrahedra's division by 6: 1e-14.
+BOOST_AUTO_TEST_CASE(a_region_merges_blocks_below_min_block_volume) {
+  const auto tolerance = boost::test_tools::tolerance(1e-14);
+  json document = region_scene();
+  const dyn::Scene3d automatic = dyn::parse_scene3d(document, "region.json");
+  BOOST_TEST(automatic.generated_count == 3u);
+  BOOST_TEST(automatic.merged_fragments == 0u);
+  BOOST_TEST(automatic.min_block_volume == 8e-3 / 3, tolerance);
+  document["region"]["min_block_volume"] = 2.5;
+  const dyn::Scene3d merged = dyn::parse_scene3d(document, "region.json");
+  BOOST_TEST_REQUIRE(merged.generated_count == 1u);
+  BOOST_TEST(merged.merged_fragments == 2u);
+  BOOST_TEST(merged.min_block_volume == 2.5);
+  const dyn::Block3dSpec& block = merged.blocks[merged.generated_first];
+  BOOST_TEST(block.id == "r_1");
+  BOOST_TEST_REQUIRE(block.parts.size() == 3u);
+  BOOST_TEST(kernel::moments(block.parts[0]).volume == 4.0, tolerance);
+  BOOST_TEST(block_volume(block) == 8.0, tolerance);
+  BOOST_TEST(merged.track == std::vector<std::string>{"r_1"});
+
+  expect_error([](json& d) { d = region_scene(); d["region"]["min_block_volume"] = -1; }, "region.min_block_volume",
+               "expected the volume in m³ below which a cut block is merged into a neighbour, a finite number >= 0, "
+               "or \"auto\"");
+  expect_error([](json& d) { d = region_scene(); d["region"]["min_block_volume"] = "bogus"; },
+               "region.min_block_volume",
+               "or \"auto\" (the default: 1e-3 of the region's volume per block of the cut), got string \"bogus\"");
+  expect_error([](json& d) { d = region_scene(); d["region"]["colour"] = "grey"; }, "region.colour",
+               "unknown field; expected only vertices, faces, box, parts, material, group, id_prefix, "
+               "min_block_volume");
+}
+
+// The jointed mass (examples/scenes3d/jointed_mass.json) under the default "auto": cut with
+// min_block_volume 0, its box of 144 m³ makes 147 blocks, so auto is 1e-3 x 144 / 147 =
+// 9.8e-4 m³, and exactly two blocks are below it, the slivers of 3.3e-5 and 9.8e-5 m³. The next
+// one, 9.9e-4 m³, is above it by 1.1 %: far more than the volumes' rounding (a few ulps), so no
+// rounding decides which blocks are fragments, but a bound 1.2 % larger would take it too; the
+// ones after are 1.5e-3 m³ and more. A block of a box cut by
+// planes always shares a face with another, and a merge leaves one block fewer whichever block
+// receives it (a sliver merged into the other sliver is still below the bound and merges
+// again), so the default cut has 147 - 2 = 145 blocks, every one of them at least the bound,
+// their volumes still summing to 144 m³ (1e-12, as in examples3d_test). "auto" given is the
+// default.
+BOOST_AUTO_TEST_CASE(the_jointed_mass_merges_its_two_slivers_by_default) {
+  const std::string file = examples3d + "/jointed_mass.json";
+  json document = dyn::read_json_file(file);
+  document["region"]["min_block_volume"] = 0;
+  const dyn::Scene3d unmerged = dyn::parse_scene3d(document, file);
+  BOOST_TEST_REQUIRE(unmerged.generated_count == 147u);
+  BOOST_TEST(unmerged.merged_fragments == 0u);
+  std::vector<double> volumes;
+  for (std::size_t i = unmerged.generated_first; i < unmerged.blocks.size(); ++i) {
+    volumes.push_back(block_volume(unmerged.blocks[i]));
+  }
+  std::sort(volumes.begin(), volumes.end());
+  const double bound = 1e-3 * 144.0 / 147.0;
+  const auto below =
+      static_cast<std::size_t>(std::count_if(volumes.begin(), volumes.end(), [&](double v) { return v < bound; }));
+  BOOST_TEST(below == 2u);
+  BOOST_TEST(volumes[0] == 3.3e-5, boost::test_tools::tolerance(0.02));
+  BOOST_TEST(volumes[1] == 9.8e-5, boost::test_tools::tolerance(0.02));
+  BOOST_TEST(volumes[2] == 9.9e-4, boost::test_tools::tolerance(0.01));
+  BOOST_TEST(volumes[2] > 1.01 * bound);
+
+  const dyn::Scene3d merged = dyn::read_scene3d_file(file);
+  BOOST_TEST(merged.min_block_volume == bound, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(merged.merged_fragments == below);
+  BOOST_TEST(merged.generated_count == 147u - below);
+  double sum = 0;
+  for (std::size_t i = merged.generated_first; i < merged.blocks.size(); ++i) {
+    const double volume = block_volume(merged.blocks[i]);
+    BOOST_TEST(volume >= bound);
+    sum += volume;
+  }
+  BOOST_TEST(sum == 144.0, boost::test_tools::tolerance(1e-12));
+  document["region"]["min_block_volume"] = "auto";
+  BOOST_TEST(dyn::parse_scene3d(document, file).generated_count == 145u);
 }

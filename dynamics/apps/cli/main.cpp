@@ -271,12 +271,23 @@ bool without_2d_flags(const RunArgs& options, std::string_view applies) {
   return true;
 }
 
+// Says that a 3D region's cut merged fragments into their neighbours (region.min_block_volume),
+// which changes the blocks a user counts on; nothing when it merged none.
+void note_merged(std::ostream& out, std::size_t merged, double min_block_volume) {
+  if (merged == 0) return;
+  std::ostringstream bound;
+  bound << std::setprecision(3) << min_block_volume;
+  out << "region: " << merged << (merged == 1 ? " fragment" : " fragments") << " below " << bound.str()
+      << " m³ merged into neighbours\n";
+}
+
 // A 3D scene ("dimension": 3) on the implicit 3D DDA (dynamics/io/scene3d_output.hpp).
 int run_run3d(const RunArgs& options, const nlohmann::json& document) {
   if (!without_2d_flags(options, "applies to 2D scenes only; the 3D engine has no checkpoints")) {
     return exit_bad_input;
   }
   dyn::Scene3d scene = dyn::parse_scene3d(document, options.scene);
+  note_merged(std::cout, scene.merged_fragments, scene.min_block_volume);
   scene.params.threads = options.threads;
   ProgressBar bar;
   scene.params.equilibrium_progress = [&bar](std::size_t iterations, double ratio) {
@@ -474,12 +485,14 @@ struct CutArgs {
 
 // 3D: the region of a {"dimension": 3, "region", "joint_sets"} document (dynamics/io/cut3d.hpp).
 int run_cut3(const CutArgs& options, const nlohmann::json& document) {
-  const nlohmann::ordered_json blocks = dyn::cut3d_blocks(dyn::parse_cut3(document, options.scene));
-  write_json(options.output, blocks);
+  const dyn::Cut3Input input = dyn::parse_cut3(document, options.scene);
+  const dyn::Cut3Result cut = dyn::cut3d(input);
+  write_json(options.output, dyn::cut3d_blocks(input, cut));
   std::ostream& summary = options.output == "-" ? std::cerr : std::cout;
-  summary << blocks.at("blocks").size() << " blocks cut from the 3D region of " << options.scene;
+  summary << cut.blocks.size() << " blocks cut from the 3D region of " << options.scene;
   if (options.output != "-") summary << ", written to " << options.output;
   summary << '\n';
+  note_merged(summary, cut.merged, cut.min_block_volume);
   return exit_ok;
 }
 

@@ -205,7 +205,10 @@ nlohmann::ordered_json wedge_cut_document(const WedgeCase& c) {
            {{"box", {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}}},
             {"material", "rock"},
             {"group", "slope"},
-            {"id_prefix", "slope"}}},
+            {"id_prefix", "slope"},
+            // The wedge is the block under study, 1 to 100 m³ beside a 30 000 m³ region: "auto"
+            // would merge the smaller ones into the base.
+            {"min_block_volume", 0}}},
           {"joint_sets", {joint_set_json(joint_set(c.a, c.crest)), joint_set_json(joint_set(c.b, c.crest))}}};
 }
 
@@ -215,7 +218,8 @@ nlohmann::ordered_json wedge_scene_document(const WedgeCase& c, const WedgeScene
                                 ": expected the same friction angle on both joints (one interface carries them)");
   }
   const std::string name = "wedge case " + std::to_string(c.seed);
-  const nlohmann::ordered_json cut = cut3d_blocks(parse_cut3(nlohmann::json(wedge_cut_document(c)), name));
+  const Cut3Input input = parse_cut3(nlohmann::json(wedge_cut_document(c)), name);
+  const nlohmann::ordered_json cut = cut3d_blocks(input, cut3d(input));
   auto [wedge, base] = split_pieces(c, cut);
   const double phi = c.a.friction_angle_deg;
   nlohmann::ordered_json base_block = {{"id", "base"}, {"group", "slope"}, {"material", "rock"}, {"fixed", true},

@@ -2,9 +2,11 @@
 
 #include <span>
 #include <string_view>
+#include <utility>
 
 #include "rockcontact/dynamics/io/json_read.hpp"
 #include "rockcontact/kernel/3d/convex_polyhedron.hpp"
+#include "rockcontact/kernel/3d/moments.hpp"
 
 namespace rockcontact::dynamics {
 namespace {
@@ -14,7 +16,9 @@ using nlohmann::ordered_json;
 
 constexpr JsonField document_fields[] = {
     {"dimension", true, "3"},
-    {"region", true, "the region: {\"vertices\", \"faces\"}, {\"box\"} or {\"parts\"}, with \"material\", \"group\", \"id_prefix\""},
+    {"region", true,
+     "the region: {\"vertices\", \"faces\"}, {\"box\"} or {\"parts\"}, with \"material\", \"group\", "
+     "\"id_prefix\", \"min_block_volume\""},
     {"joint_sets", false, "an array of joint sets {\"dip_deg\", \"dip_direction_deg\", \"spacing\", \"offset\"}"},
 };
 constexpr JsonField region_fields[] = {
@@ -25,6 +29,9 @@ constexpr JsonField region_fields[] = {
     {"material", false, "the material of every block cut from it, a name"},
     {"group", false, "the group of those blocks, a string"},
     {"id_prefix", false, "their ids are <id_prefix>_1, <id_prefix>_2, ..., a string"},
+    {"min_block_volume", false,
+     "the volume in m³ below which a cut block is merged into a neighbour, a finite number >= 0, or \"auto\" "
+     "(the default: 1e-3 of the region's volume per block of the cut)"},
 };
 constexpr JsonField box_fields[] = {
     {"min", true, "the lower corner [x, y, z] in m"},
@@ -82,6 +89,10 @@ void read_region(const JsonReader& reader, const json& value, Cut3Input& input) 
                              std::pair{"id_prefix", &input.id_prefix}}) {
     if (value.contains(key)) *target = reader.string(value.at(key), json_child(path, key), expected(region_fields, key));
   }
+  if (value.contains("min_block_volume") && value.at("min_block_volume") != "auto") {
+    input.min_block_volume = reader.non_negative(value.at("min_block_volume"), json_child(path, "min_block_volume"),
+                                                 expected(region_fields, "min_block_volume"));
+  }
 }
 
 kernel::JointSet3 read_joint_set(const JsonReader& reader, const json& item, const std::string& path) {
@@ -132,8 +143,9 @@ Cut3Input parse_cut3(const json& document, const std::string& source_name) {
   return input;
 }
 
-std::vector<kernel::CutBlock3> cut3d(const Cut3Input& input) {
+Cut3Result cut3d(const Cut3Input& input) {
   std::vector<kernel::ConvexPolyhedron> parts;
+  double region_volume = 0.0;
   for (std::size_t i = 0; i < input.region.size(); ++i) {
     const std::string name = input.region.size() == 1 ? "region" : "region.parts[" + std::to_string(i) + "]";
     try {
@@ -141,16 +153,25 @@ std::vector<kernel::CutBlock3> cut3d(const Cut3Input& input) {
     } catch (const kernel::InvalidPolyhedron& e) {
       throw InputError(input.source, name, e.what());
     }
+    region_volume += kernel::moments(parts.back()).volume;
   }
+  Cut3Result cut;
   try {
-    return kernel::cut_region<kernel::Filtered>(parts, input.joint_sets, input.id_prefix);
+    // Cut unmerged first: "auto" needs the number of blocks the cut makes.
+    cut.blocks = kernel::cut_region<kernel::Filtered>(parts, input.joint_sets, input.id_prefix);
   } catch (const kernel::InvalidCut& e) {
     throw InputError(input.source, e.subject(), e.problem());
   }
+  const std::size_t unmerged = cut.blocks.size();
+  cut.min_block_volume = input.min_block_volume.value_or(auto_min_block_volume_fraction * region_volume /
+                                                         static_cast<double>(unmerged));
+  cut.blocks = kernel::merge_small_blocks(std::move(cut.blocks), {cut.min_block_volume}, input.id_prefix);
+  cut.merged = unmerged - cut.blocks.size();
+  return cut;
 }
 
-ordered_json cut3d_blocks(const Cut3Input& input) {
-  const std::vector<kernel::CutBlock3> blocks = cut3d(input);
+ordered_json cut3d_blocks(const Cut3Input& input, const Cut3Result& cut) {
+  const std::vector<kernel::CutBlock3>& blocks = cut.blocks;
   ordered_json out = ordered_json::array();
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     ordered_json block;

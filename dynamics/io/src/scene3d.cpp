@@ -234,18 +234,20 @@ class Scene3dParser {
       }
       return;
     }
-    json cut = {{"dimension", 3}, {"region", document.at("region")}};
-    if (document.contains("joint_sets")) cut["joint_sets"] = document.at("joint_sets");
-    const Cut3Input input = parse_cut3(cut, reader_.source());
+    json cut_document = {{"dimension", 3}, {"region", document.at("region")}};
+    if (document.contains("joint_sets")) cut_document["joint_sets"] = document.at("joint_sets");
+    const Cut3Input input = parse_cut3(cut_document, reader_.source());
     if (input.material.empty()) {
       reader_.fail("region.material",
                    "missing field; expected the name of one of the scene's materials "
                    "(the material of every block cut from the region)");
     }
     const Material material = material_of(document.at("region").at("material"), "region.material");
-    std::vector<kernel::CutBlock3> pieces = cut3d(input);
+    Cut3Result cut = cut3d(input);
+    scene.min_block_volume = cut.min_block_volume;
+    scene.merged_fragments = cut.merged;
     scene.generated_first = scene.blocks.size();
-    for (std::size_t k = 0; k < pieces.size(); ++k) {
+    for (std::size_t k = 0; k < cut.blocks.size(); ++k) {
       Block3dSpec spec;
       spec.id = input.id_prefix + "_" + std::to_string(k + 1);
       const bool taken = std::any_of(scene.blocks.begin(), scene.blocks.end(),
@@ -255,7 +257,7 @@ class Scene3dParser {
                      "the generated id \"" + spec.id +
                          "\" is also a block's; expected a prefix no other block id uses");
       }
-      spec.parts = std::move(pieces[k].parts);
+      spec.parts = std::move(cut.blocks[k].parts);
       spec.group = input.group;
       spec.material = material;
       scene.blocks.push_back(std::move(spec));

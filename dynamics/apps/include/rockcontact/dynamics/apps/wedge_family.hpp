@@ -123,7 +123,7 @@ struct WedgeSceneParams {
 inline WedgeSceneParams default_wedge_scene_params() { return {}; }
 
 // The cut document of a case: {"dimension": 3, "region": {"box", "material": "rock", "group":
-// "slope", "id_prefix": "slope"}, "joint_sets": [A, B]} (cut3d.hpp).
+// "slope", "id_prefix": "slope", "min_block_volume": 0}, "joint_sets": [A, B]} (cut3d.hpp).
 nlohmann::ordered_json wedge_cut_document(const WedgeCase& c);
 
 // The scene document of a case (header): blocks "base" (fixed, convex parts) and "wedge".

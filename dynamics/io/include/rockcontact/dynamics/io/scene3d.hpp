@@ -42,8 +42,10 @@
 //                                                     (optional when "region" is given)
 //    "region": the region of `rockcontact cut` in 3D (cut3d.hpp): {"vertices", "faces"} |
 //              {"box": {"min", "max"}} | {"parts": [...]}, with "material" (required here),
-//              "group", "id_prefix" (default "region")       (optional; blocks
-//                                                              "<id_prefix>_<k>", movable)
+//              "group", "id_prefix" (default "region"), "min_block_volume" (m³ >= 0 or
+//              "auto", the default: 1e-3 of the region's volume per block of the cut; blocks
+//              below it merged into a neighbour)       (optional; blocks
+//                                                        "<id_prefix>_<k>", movable)
 //    "joint_sets": [{"dip_deg": [0, 90], "dip_direction_deg": [0, 360) clockwise from North,
 //                    "spacing": m > 0, "offset": m (default 0)}, ...]   (optional, with
 //                                                                        "region")
@@ -72,6 +74,8 @@ struct Scene3d {
   std::vector<std::string> material_names;  // of each block, by index
   std::size_t generated_first = 0;          // the blocks cut from the region:
   std::size_t generated_count = 0;          // blocks[generated_first, + generated_count)
+  double min_block_volume = 0.0;            // m³: the cut merged the region's blocks below this
+  std::size_t merged_fragments = 0;         // so many of them, each into a neighbour
   ContactLaw3d law;
   bool kn_auto = false;  // law.kn is auto_normal_penalty3d's ("kn": "auto" or none)
   bool kt_auto = false;  // law.kt is law.kn / 10 ("kt": "auto" or none)
