@@ -56,8 +56,8 @@
 //      is processed again while still below the bound.
 //   4. A fragment that shares no face with any block stays as it is; merges only join blocks, so
 //      it never gains a neighbour later.
-//   5. The blocks left are numbered from 1 again in their order: the numbers of the blocks after
-//      a merged fragment move down by one.
+//   5. The blocks left are numbered from 1 again in their order: a block's number drops by one
+//      for every fragment before it that merged.
 // A merged block is one body given as convex parts that meet face to face, the form the 3D
 // engine takes non-convex blocks in. With min_block_volume > 0, every block's volume (as step 1
 // computes it) is >= min_block_volume unless it has no neighbour. The blocks still tile the
