@@ -209,7 +209,7 @@ void next_iteration(ContactState3d& state, const ContactUpdate3d& update) {
 void commit_step(ContactState3d& state, const ContactUpdate3d& update) {
   next_iteration(state, update);
   state.shear = update.shear;
-  if (update.mode == ContactMode::open) state.offset = 0.0;
+  if (update.mode == ContactMode::open) state.offset = std::min(0.0, update.gap);
 }
 
 double spring_energy(const ContactLaw3d& law, ContactMode mode, double offset, double gap,

@@ -183,7 +183,11 @@ double spring_energy(const ContactLaw3d& law, ContactMode mode, double offset, d
 // Between iterations of one step: the new mode, fn* and v*; r_acc stays the step's.
 void next_iteration(ContactState3d& state, const ContactUpdate3d& update);
 
-// At the end of a step: everything, the stretch included.
+// At the end of a step: everything, the stretch included. An open contact keeps as its offset
+// the penetration it ends the step with (0 when apart; a contact born inside an overlap that
+// opened short of it, or one the hysteresis left open): closed later, its spring acts on
+// further penetration only, and does not create the energy of a penetration no force worked
+// against.
 void commit_step(ContactState3d& state, const ContactUpdate3d& update);
 
 // §5.1, eq. 41-43: a vertex-face constraint found open at the start of the step (d0 >= 0) and
