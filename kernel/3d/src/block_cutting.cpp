@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "convex_clip2.hpp"
 #include "rockcontact/kernel/3d/contact_set.hpp"
 #include "rockcontact/kernel/3d/moments.hpp"
 #include "rockcontact/kernel/3d/plane_cut.hpp"
@@ -198,29 +199,6 @@ std::vector<Vec2> projected(const std::vector<Point3>& loop, const Point3& origi
   return out;
 }
 
-// The part of convex polygon `subject` inside convex polygon `clip`, both counter-clockwise
-// (Sutherland-Hodgman: clipped by the half-plane left of each edge of `clip` in turn).
-std::vector<Vec2> clipped(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
-  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
-    const Vec2 &c0 = clip[e], &c1 = clip[(e + 1) % clip.size()];
-    const auto side = [&](const Vec2& p) {
-      return (c1[0] - c0[0]) * (p[1] - c0[1]) - (c1[1] - c0[1]) * (p[0] - c0[0]);
-    };
-    std::vector<Vec2> kept;
-    for (std::size_t i = 0; i < subject.size(); ++i) {
-      const Vec2 &p = subject[i], &q = subject[(i + 1) % subject.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) kept.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) {
-        const double t = sp / (sp - sq);
-        kept.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
-      }
-    }
-    subject = std::move(kept);
-  }
-  return subject;
-}
-
 double shoelace_area(const std::vector<Vec2>& polygon) {
   double twice = 0.0;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
@@ -242,7 +220,7 @@ double shared_area(const FaceLoop& a, const FaceLoop& b, double slack) {
   const bool positive = a.normal[a.axis] > 0;
   const std::vector<Vec2> pa = projected(a.loop, origin, a.axis, !positive);
   const std::vector<Vec2> pb = projected(b.loop, origin, a.axis, positive);
-  return shoelace_area(clipped(pa, pb)) / std::abs(a.normal[a.axis]);
+  return shoelace_area(detail::clip_convex2(pa, pb)) / std::abs(a.normal[a.axis]);
 }
 
 // Merges the fragments of a set of blocks (header, merge_small_blocks steps 1-4).

@@ -16,6 +16,7 @@
 #include <string>
 #include <utility>
 
+#include "convex_clip2.hpp"
 #include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/penetration.hpp"
 #include "rockcontact/kernel/3d/predicates.hpp"
@@ -1109,31 +1110,6 @@ std::vector<std::array<double, 2>> hull2(std::vector<std::array<double, 2>> p, d
   return h;
 }
 
-// The convex polygon `subject` clipped by the half-planes left of every edge of the convex,
-// counter-clockwise `clip` (Sutherland-Hodgman). A `clip` of one or two points (a vertex or an
-// edge as support feature) keeps the part of `subject` it covers: its points inside `subject`,
-// or its segment's part inside.
-std::vector<std::array<double, 2>> clip2(std::vector<std::array<double, 2>> subject,
-                                         const std::vector<std::array<double, 2>>& clip) {
-  const std::size_t m = clip.size();
-  for (std::size_t e = 0; e < m && m >= 3 && !subject.empty(); ++e) {
-    const auto &a = clip[e], &b = clip[(e + 1) % m];
-    const auto side = [&](const auto& q) { return (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]); };
-    std::vector<std::array<double, 2>> kept;
-    for (std::size_t i = 0; i < subject.size(); ++i) {
-      const auto &p = subject[i], &q = subject[(i + 1) % subject.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0.0) kept.push_back(p);
-      if ((sp >= 0.0) != (sq >= 0.0)) {
-        const double t = sp / (sp - sq);
-        kept.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
-      }
-    }
-    subject = std::move(kept);
-  }
-  return subject;
-}
-
 // Where two segments of the plane meet: the crossing of their lines, or for (nearly) parallel
 // ones the middle of the four endpoints.
 std::array<double, 2> crossing2(const std::vector<std::array<double, 2>>& a, const std::vector<std::array<double, 2>>& b) {
@@ -1178,7 +1154,9 @@ void add_support_corners(const PartPair& pair, const Slab& slab, std::vector<Con
   } else if (a.size() == 2) {
     corners = {crossing2(a, b)};  // two edges
   } else {
-    corners = hull2(b.size() >= 3 ? clip2(a, b) : clip2(b, a), slab.slack);
+    // A support feature of one or two points (a vertex or an edge) is clipped by the other's
+    // polygon: its points inside it, or its segment's part inside.
+    corners = hull2(b.size() >= 3 ? detail::clip_convex2(a, b) : detail::clip_convex2(b, a), slab.slack);
     if (corners.empty()) corners = {b.front()};  // rounding lost a touch along an edge
   }
   const auto nearest = [&](const std::vector<std::array<double, 2>>& points, const std::vector<std::uint32_t>& ids,
