@@ -539,6 +539,31 @@ BOOST_AUTO_TEST_CASE(offset_spring_resists_only_further_penetration) {
   BOOST_TEST(t.f.norm() <= 1e-9);
 }
 
+// Such a constraint that opens short of its birth gap (back above -1 mm, still 0.8 mm into the
+// other block) ends the step open with that penetration as its offset (commit_step): at the
+// next step it stays open at -0.8 mm and closes only deeper, 0.1 mm deeper pushing with
+// kn 1e-4 = 1e5 N. With the offset dropped to 0 it would close at once with kn 0.8e-3 = 8e5 N
+// and 320 J in its spring, energy no force had worked for.
+BOOST_AUTO_TEST_CASE(an_open_contact_keeps_its_penetration_as_offset) {
+  Single c(-1e-3);
+  c.state.mode = d::ContactMode::locked;
+  c.state.offset = -1e-3;
+  const d::ContactUpdate3d opened = c.move({0, 0, 0.2e-3});
+  BOOST_TEST(opened.mode == d::ContactMode::open);
+  BOOST_TEST(close(opened.gap, -0.8e-3));
+  d::commit_step(c.state, opened);
+  BOOST_TEST(close(c.state.offset, -0.8e-3));
+  Single next(-0.8e-3);
+  next.state = c.state;
+  BOOST_TEST(next.move({0, 0, 0}).mode == d::ContactMode::open);
+  const d::ContactUpdate3d deeper = next.move({0, 0, -0.1e-3});
+  BOOST_TEST(deeper.mode == d::ContactMode::locked);
+  BOOST_TEST(close(deeper.normal_force, 1e5));
+  // Apart, the offset is 0 again.
+  d::commit_step(c.state, c.move({0, 0, 1.5e-3}));
+  BOOST_TEST(c.state.offset == 0.0);
+}
+
 // Locked <-> sliding: fn = kn 1e-4 = 1e5 N, tan φ fn = 57 735 N, cap = tan φ fn / kt = 0.577 mm.
 // A stretch under the cap stays locked with kt times it; over the cap it slides with the
 // stretch held at the cap and the force tan φ fn (+ c A with a cohesion). A sliding contact

@@ -8,7 +8,6 @@
 //   φ = 40° (> 30°: none can slide on the base) topple: each turns about its downhill bottom edge
 //   while that edge stays where it stood on the base; a squat block (b/h = 4 / 1.5 = 2.67 >
 //   tan 30°) on the same base stands.
-// And a jointed mass (dynamics/tests/data/scenes/jointed_box3d.json) takes its steps.
 
 #include <algorithm>
 #include <cmath>
@@ -38,11 +37,8 @@ double distance(const Point3& a, const Point3& b) { return std::hypot(a.x - b.x,
 // Toppling (the scene's axes lie along the slope: x down the dip, z normal to the base). The
 // criteria in numbers: toppling needs b/h < tan θ (0.375 < 0.577) and sliding tan φ < tan θ
 // (0.839 > 0.577: no block slides on its own). After 1 s each slender block has turned by more
-// than 4° about the strike (+y, its top downhill) and the squat one by less than 0.5° (the
-// issue's bound) and moved less than 1 mm. (How far the row has turned at 1 s is no reference of
-// its own: it hinges on contacts at exact touch, and moved between 4.9° and 6.1° with the
-// open-close iteration's handling of contacts that keep changing. 4°, eight times the squat
-// block's bound, tells turning from standing.) Turning, not sliding, carries the slender blocks'
+// than 5° about the strike (+y, its top downhill) and the squat one by less than 0.5° (the
+// issue's bound) and moved less than 1 mm. Turning, not sliding, carries the slender blocks'
 // motion: the downhill top edge of each (box vertex 5) has moved at least 10 times as far as its
 // downhill bottom edge (vertex 1), about which it turns; a block sliding without turning moves
 // both alike. (The bottom edges do slip by a few mm to 5 cm late in the run, under the thrust of
@@ -68,7 +64,7 @@ BOOST_AUTO_TEST_CASE(slender_blocks_topple_squat_block_stands) {
     const double bottom = distance(b.parts[0][1], bottoms[i]), top = distance(b.parts[0][5], tops[i]);
     BOOST_TEST_MESSAGE("t" << k << ": turned " << turned << "°, top edge moved " << top << " m, bottom edge " << bottom
                            << " m");
-    BOOST_TEST(turned > 4.0);
+    BOOST_TEST(turned > 5.0);
     BOOST_TEST(top > 10.0 * bottom);
   }
   const dyn::Block3dState& squat = block(sim, "squat");
@@ -106,25 +102,4 @@ BOOST_AUTO_TEST_CASE(wedge_has_table_4s_six_constraints) {
       BOOST_TEST(positions.size() == 4u);
     }
   }
-}
-
-// A jointed mass takes the steps it asks for: 31 blocks cut from a 3 x 3 x 2 m box by three
-// inclined joint sets (33 pieces, of which the default min_block_volume merges two), with the
-// defaults. Its open-close iterations meet contacts at touches that carry a share of a block's
-// weight and change at every iteration, whatever the step (dda3d.cpp, chatter_tolerance):
-// before the iteration settled them, the 5 ms took 46 steps with 28 cuts. Now each of its 10
-// steps is the scene's 0.5 ms. The mass starts settled (the initial equilibrium) and must not
-// gain energy: its total grows by 1.2e-4 of its 1.2 J (3.0e-4 with the rule off, from the
-// integrator), and by 3.9e-3 when a contact the rule left open while penetrating was then
-// pushed out of that penetration in full (contact_terms3d.hpp, commit_step). The bound is 5e-4.
-BOOST_AUTO_TEST_CASE(a_jointed_mass_steps_at_its_dt) {
-  const dyn::Scene3d scene =
-      dyn::read_scene3d_file(std::string(ROCKCONTACT_DYNAMICS_TESTDATA_DIR) + "/scenes/jointed_box3d.json");
-  BOOST_TEST(scene.generated_count == 31u);
-  dyn::Dda3d sim(scene.blocks, scene.law, scene.params);
-  const double start = sim.energies().total();
-  while (sim.time() < scene.duration - 1e-12) sim.step();
-  BOOST_TEST(sim.last_step().cuts == 0u);
-  BOOST_TEST(sim.steps() == 10u);
-  BOOST_TEST(sim.energies().total() <= start * (1.0 + 5e-4));
 }

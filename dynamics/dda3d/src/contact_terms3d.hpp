@@ -30,10 +30,9 @@
 //   open   -> closed (locked) when d1 < offset - tol, the spring then enters the next iteration;
 //   closed -> open when the normal spring's tension kn (d1 - offset) exceeds the tensile
 //             strength σt A + kn tol (with σt = 0: when d1 > offset + tol);
-// tol = ContactLaw3d::gap_tolerance, a hysteresis (0 in the steps but for a contact that keeps
-// changing late in an open-close iteration, dda3d.cpp chatter_tolerance; the initial
-// equilibrium's static solve uses 1e-9 of the scene's size) so that a contact at exact touch
-// carrying no load does not open and close from one iteration to the next.
+// tol = ContactLaw3d::gap_tolerance, a hysteresis (0 in the steps; the initial equilibrium's
+// static solve uses 1e-9 of the scene's size) so that a contact at exact touch carrying no load
+// does not open and close from one iteration to the next.
 //   closed -> locked or sliding by the Mohr-Coulomb test on the tangential spring: the trial
 //             stretch s = P (r_acc + Δr) is kept when kt |s| <= tan φ max(fn, 0) + c A, and is
 //             otherwise stretched only to that cap along s (sliding), never reset.
@@ -185,9 +184,8 @@ void next_iteration(ContactState3d& state, const ContactUpdate3d& update);
 
 // At the end of a step: everything, the stretch included. An open contact keeps as its offset
 // the penetration it ends the step with (0 when apart; a contact born inside an overlap that
-// opened short of it, or one the hysteresis left open): closed later, its spring acts on
-// further penetration only, and does not create the energy of a penetration no force worked
-// against.
+// opened short of it): closed later, its spring acts on further penetration only, and does not
+// create the energy of a penetration no force worked against.
 void commit_step(ContactState3d& state, const ContactUpdate3d& update);
 
 // §5.1, eq. 41-43: a vertex-face constraint found open at the start of the step (d0 >= 0) and

@@ -48,25 +48,6 @@ constexpr double energy_floor_speed = 1.0e-3;
 // close by 1e-8 m from one iteration of the static solve to the next. (Not in the dynamic steps:
 // there it changed the toppling scene's course, a motion that hinges on such contacts.)
 constexpr double open_close_tolerance = 1.0e-9;
-// A contact that keeps changing within a step (attempt): past a third of the open-close
-// iterations (max_open_close), a contact that has changed in chatter_changes of them gets a
-// hysteresis of chatter_tolerance of the smaller block's size in its open-close decision
-// (contact_terms3d.hpp), and its spring giving way no longer counts as a change. Such a contact
-// sits at a touch whose load the iteration passes back and forth between it and its
-// neighbours: closed, the solve finds it in slight tension; open, penetrating by nm to µm;
-// locked, over the Coulomb cap; sliding, under it. In a 147-block jointed mass one to a dozen
-// of ~5 000 contacts did so at almost every step, at every step size, and cut each step
-// 30-fold. The rule is a last resort before the step is cut: applied from the first
-// iteration, it changed the course of the toppling scene, whose blocks hinge on such contacts
-// (their turn at 1 s went from 5.8° to between 1.8° and 16° as the rule's constants moved). The
-// tolerance is of the size of what it settles: such a contact carries a share of a block's
-// weight, whose spring is ~1e-7 of the block's size at the automatic kn, and 1e-7 still cut
-// the jointed mass's steps 2-fold where 1e-6 cut none. It is far below the penetration the
-// penalty itself allows (the 18-block system's bound is 1 %); the force it lets a contact pull
-// or go without for the rest of the step, kn times it, is of the order of the lighter block's
-// weight, and the next step judges the contact afresh.
-constexpr std::size_t chatter_changes = 2;
-constexpr double chatter_tolerance = 1.0e-6;
 // One contact per position (hold_contacts): constraints of a pair with one normal closer than
 // this fraction of the smaller block's size (and than the detection range) are one contact. A
 // vertex held on a face and the face's own corner found on the vertex's block start as one
@@ -1291,12 +1272,6 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       const auto dj = increments(blocks[k.b]);
       detail::ContactLaw3d judged = k.law;
       if (k.closing) judged.tensile_strength = 0.0;
-      const bool chattering =
-          iterations > params.max_open_close / 3 && changes[static_cast<std::size_t>(c)] >= chatter_changes;
-      if (chattering) {
-        judged.gap_tolerance =
-            std::max(judged.gap_tolerance, chatter_tolerance * std::min(blocks[k.a].size, blocks[k.b].size));
-      }
       k.update = detail::evaluate_contact(k.kinematics, k.state, judged, di, dj);
       const bool was_closed = k.state.mode != detail::ContactMode::open;
       const bool is_closed = k.update.mode != detail::ContactMode::open;
@@ -1305,8 +1280,8 @@ bool Dda3d::Impl::attempt(std::vector<Constraint>& list, Eigen::VectorXd& d, std
       // contact does not have (a step accepted so would stop a frictionless block for every new
       // contact). A sliding contact that locks again is taken over for the next iteration
       // without forcing one: it held the friction force, which the locked spring starts from.
-      bool this_changed = was_closed != is_closed || (!chattering && k.state.mode == detail::ContactMode::locked &&
-                                                                      k.update.mode == detail::ContactMode::sliding);
+      bool this_changed = was_closed != is_closed || (k.state.mode == detail::ContactMode::locked &&
+                                                      k.update.mode == detail::ContactMode::sliding);
       // §5.1: a contact that closes within the step (open at its start, or closed ahead by
       // Table 1) moves to where its features meet; the system is solved again with it there.
       if (is_closed && (!was_closed || k.closing) && !k.revised) this_changed = revise(k, di, dj) || this_changed;
