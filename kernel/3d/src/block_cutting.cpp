@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "box3.hpp"
 #include "convex_clip2.hpp"
 #include "rockcontact/kernel/3d/contact_set.hpp"
 #include "rockcontact/kernel/3d/moments.hpp"
@@ -121,32 +122,7 @@ using Vec2 = std::array<double, 2>;
 Vec3 minus(const Point3& p, const Point3& o) { return {p.x - o.x, p.y - o.y, p.z - o.z}; }
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// An axis-aligned box, m.
-struct Box3 {
-  Vec3 lo{INFINITY, INFINITY, INFINITY};
-  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
-  void add(const Box3& b) {
-    for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], b.lo[i]);
-      hi[i] = std::max(hi[i], b.hi[i]);
-    }
-  }
-  // Do the boxes meet, each grown by `slack`?
-  bool meets(const Box3& b, double slack) const {
-    for (int i = 0; i < 3; ++i) {
-      if (lo[i] > b.hi[i] + 2 * slack || b.lo[i] > hi[i] + 2 * slack) return false;
-    }
-    return true;
-  }
-};
-
-Box3 bounding_box(const ConvexPolyhedron& part) {
-  Box3 box;
-  for (const Point3& p : part.vertices()) {
-    box.add({{p.x, p.y, p.z}, {p.x, p.y, p.z}});
-  }
-  return box;
-}
+using detail::Box3;
 
 // A face as given, ready for the shared-area test: its loop (counter-clockwise seen from outside),
 // its outward unit normal (Newell's sum of cross products about the first vertex) and the axis of
@@ -181,7 +157,7 @@ struct PartFaces {
 };
 
 PartFaces part_faces(const ConvexPolyhedron& part) {
-  PartFaces p{bounding_box(part), {}};
+  PartFaces p{detail::box_of({&part, 1}), {}};
   for (const auto& face : part.input_faces()) p.faces.push_back(face_loop(part, face));
   return p;
 }
@@ -243,8 +219,7 @@ class FragmentMerger {
       all.add(box);
       if (volume < min_volume_) queue_.insert({volume, b});
     }
-    double size = 0.0;
-    for (int i = 0; i < 3; ++i) size = std::max(size, all.hi[i] - all.lo[i]);
+    const double size = all.size();
     slack_ = shared_face_tolerance * size;
     least_area_ = shared_face_tolerance * size * size;
   }

@@ -16,6 +16,7 @@
 #include <string>
 #include <utility>
 
+#include "box3.hpp"
 #include "convex_clip2.hpp"
 #include "rockcontact/kernel/3d/detail/separating_plane.hpp"
 #include "rockcontact/kernel/3d/penetration.hpp"
@@ -849,33 +850,8 @@ class FlushFacetSides {
   const Point3 &g0_, &g1_, &g2_;
 };
 
-// The axis-aligned box of some parts' vertices (exact: comparisons of the input doubles).
-struct Box3 {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-
-  void add(std::span<const ConvexPolyhedron> parts) {
-    for (const ConvexPolyhedron& part : parts) {
-      for (const Point3& p : part.vertices()) {
-        const double c[3] = {p.x, p.y, p.z};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
-      }
-    }
-  }
-  double size() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
-  // Do the boxes' interiors meet? Two convex parts can overlap only where they do.
-  bool interiors_meet(const Box3& o) const {
-    for (int k = 0; k < 3; ++k) {
-      if (!(lo[k] < o.hi[k] && o.lo[k] < hi[k])) return false;
-    }
-    return true;
-  }
-};
-
-Box3 box_of(std::span<const ConvexPolyhedron> parts) {
-  Box3 box;
-  box.add(parts);
-  return box;
-}
+using detail::Box3;
+using detail::box_of;
 
 template <NumberPolicy Policy>
 void decide_pair(const Topology& cp, const Topology& tp, double tolerance, std::vector<Decision>& out) {
