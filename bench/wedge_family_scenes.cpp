@@ -48,7 +48,9 @@ ordered_json reference_json(const dyn::WedgeCase& c) {
           {"plunge_deg", r.plunge_deg},
           {"trend_deg", r.trend_deg},
           {"slide_acceleration_m_s2", dyn::wedge_slide_acceleration(r, dyn::wedge_family_gravity)},
-          {"slide_time_s", dyn::wedge_slide_time(c, r, dyn::wedge_family_gravity)}};
+          {"slide_time_s", dyn::wedge_slide_time(c, r, dyn::wedge_family_gravity)},
+          // The smallest corner force, of the weight, at the start of a slide without turning.
+          {"sliding_support_of_weight", dyn::wedge_sliding_support(c, 0.0).margin}};
 }
 
 }  // namespace

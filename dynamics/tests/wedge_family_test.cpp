@@ -226,7 +226,11 @@ BOOST_AUTO_TEST_CASE(a_slide_is_compared_while_the_wedge_is_behind_the_free_face
     if (r.factor_of_safety >= 1.0) BOOST_TEST(t == 1.0);
     if (t < 1.0) {
       ++shortened;
-      BOOST_TEST(y_then == 0.36 * y, boost::test_tools::tolerance(1e-9));
+      // 0.8 of the time to the face: 0.64 of the way, y = 0.36 y0 for the centroid; or 0.8 of
+      // the time to where the wedge would have to turn (case 5): no support 1 / 0.64 as far.
+      const double turning = dyn::wedge_sliding_support(c, moved / 0.64).margin;
+      BOOST_TEST((std::abs(y_then - 0.36 * y) <= 1e-9 * y || std::abs(turning) < 1e-5),
+                 "case seed " << c.seed << ": y " << y_then << " against " << 0.36 * y << ", support " << turning);
     }
   }
   BOOST_TEST(shortened >= 1u);
@@ -413,4 +417,39 @@ BOOST_AUTO_TEST_CASE(keel_edges_parallel_but_for_rounding_span_no_plane) {
       }
     }
   }
+}
+
+// Hoek & Bray balance forces only; the slide reference holds for a rigid wedge only if it can
+// also slide without turning. wedge_sliding_support finds corner forces that balance the moments
+// too: their sums on each joint must be Hoek & Bray's reactions (to 1e-9 of the weight, rounding
+// of two solutions of the force balance), and for every sliding case of the family the smallest
+// corner force, at the start of the slide and at the end of the window it is compared over
+// (wedge_slide_time, which stops short of where the support runs out), is positive (the least
+// at the start, of the 200 cases at phi = 20, is 0.7 % of the weight; the family's case 1, whose
+// wedge the engine lifts off joint B, has 15 %): such a lift-off is the engine's doing, not the
+// reference's. The bound can fail: far more friction than lets the wedges slide (phi = 80)
+// drags their faces up the line hard enough, below the centroid, to turn some of them.
+BOOST_AUTO_TEST_CASE(a_sliding_wedge_of_the_family_does_not_need_to_turn) {
+  std::size_t sliding = 0;
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 200, 20.0)) {
+    const dyn::WedgeLimitEquilibrium r = dyn::wedge_factor_of_safety(c.a, c.b, 1.0);
+    const dyn::WedgeSlidingSupport start = dyn::wedge_sliding_support(c, 0.0);
+    BOOST_TEST(std::abs(start.reaction_a - r.normal_reaction_a) < 1e-9, "case seed " << c.seed);
+    BOOST_TEST(std::abs(start.reaction_b - r.normal_reaction_b) < 1e-9, "case seed " << c.seed);
+    if (r.factor_of_safety >= 1.0) continue;
+    ++sliding;
+    const double t = dyn::wedge_slide_time(c, r, 9.81);
+    const double slid = 0.5 * dyn::wedge_slide_acceleration(r, 9.81) * t * t;
+    const dyn::WedgeSlidingSupport end = dyn::wedge_sliding_support(c, slid);
+    BOOST_TEST(start.margin > 0.0, "case seed " << c.seed << ": " << start.margin);
+    BOOST_TEST(end.margin > 0.0, "case seed " << c.seed << ": " << end.margin << " at " << slid << " m");
+    BOOST_TEST(std::abs(end.reaction_a - r.normal_reaction_a) < 1e-9, "case seed " << c.seed);
+  }
+  BOOST_TEST(sliding >= 50u);
+  double least = 1.0;
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 200, 80.0)) {
+    least = std::min(least, dyn::wedge_sliding_support(c, 0.0).margin);
+  }
+  BOOST_TEST(least < 0.0);
+  BOOST_CHECK_THROW(dyn::wedge_sliding_support(dyn::generate_wedge(1, 20.0), -1.0), std::invalid_argument);
 }

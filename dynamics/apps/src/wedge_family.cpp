@@ -6,7 +6,11 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <limits>
 #include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
 
 #include "rockcontact/dynamics/io/cut3d.hpp"
 #include "rockcontact/kernel/3d/block_cutting.hpp"
@@ -195,7 +199,105 @@ double wedge_slide_time(const WedgeCase& c, const WedgeLimitEquilibrium& referen
   const double centroid_y = (k.crest.y + k.on_a.y + k.on_b.y + k.daylight.y) / 4.0;
   const double to_face = centroid_y / std::abs(reference.intersection.y);  // along the line, m
   if (a <= 0.0) return at_most;
-  return std::min(at_most, 0.8 * std::sqrt(2.0 * to_face / a));
+  // The slide at which the wedge would have to turn (wedge_sliding_support): the first of 64
+  // samples up to the face with no support left, narrowed by bisection to 10^-6 of the way.
+  double turns = to_face;
+  const auto supported = [&](double slid) { return wedge_sliding_support(c, slid).margin > 0.0; };
+  if (!supported(0.0)) return 0.0;
+  constexpr int samples = 64;
+  for (int j = 1; j <= samples; ++j) {
+    const double slid = to_face * j / samples;
+    if (supported(slid)) continue;
+    double lo = to_face * (j - 1) / samples, hi = slid;
+    while (hi - lo > 1e-6 * to_face) (supported(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+    turns = lo;
+    break;
+  }
+  return std::min(at_most, 0.8 * std::sqrt(2.0 * turns / a));
+}
+
+namespace {
+
+Eigen::Vector3d vec(const Point3& p) { return {p.x, p.y, p.z}; }
+
+// The part of the polygon `corners` with y >= 0 (behind the free face). Corners within
+// `tolerance` of the face count as on it: the wedge's corners on the face are there but for
+// rounding, and a crossing next to one would be a second copy of it.
+std::vector<Eigen::Vector3d> behind_free_face(const std::vector<Eigen::Vector3d>& corners, double tolerance) {
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const Eigen::Vector3d& p = corners[k];
+    const Eigen::Vector3d& q = corners[(k + 1) % corners.size()];
+    if (p.y() >= -tolerance) out.push_back(p);
+    if ((p.y() > tolerance && q.y() < -tolerance) || (p.y() < -tolerance && q.y() > tolerance)) {
+      out.push_back(p + (q - p) * (p.y() / (p.y() - q.y())));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+WedgeSlidingSupport wedge_sliding_support(const WedgeCase& c, double slid) {
+  if (!(slid >= 0.0)) throw std::invalid_argument("slid: expected >= 0 (m), got " + std::to_string(slid));
+  if (c.a.friction_angle_deg != c.b.friction_angle_deg) {
+    throw std::invalid_argument("wedge case " + std::to_string(c.seed) + ": expected the same friction angle on both joints");
+  }
+  const WedgeLimitEquilibrium r = wedge_factor_of_safety(c.a, c.b, 1.0);
+  const WedgeCorners k = wedge_corners(c);
+  const Eigen::Vector3d i = vec(r.intersection);
+  const Eigen::Vector3d shift = slid * i;
+  const Eigen::Vector3d centroid = (vec(k.crest) + vec(k.on_a) + vec(k.on_b) + vec(k.daylight)) / 4.0 + shift;
+  const double mu = std::tan(c.a.friction_angle_deg * radians_per_degree);
+  // Across i: two unit vectors normal to it.
+  const Eigen::Vector3d e1 = i.cross(Eigen::Vector3d::UnitZ()).normalized(), e2 = i.cross(e1);
+  // Per corner, the force of a unit normal reaction there and its moment about the centroid.
+  std::vector<Eigen::Matrix<double, 6, 1>> columns;
+  std::vector<bool> on_a;
+  const auto face = [&](const Point3& other, const Point3& normal, bool a) {
+    const std::vector<Eigen::Vector3d> corners{vec(k.crest) + shift, vec(other) + shift, vec(k.daylight) + shift};
+    for (const Eigen::Vector3d& p : behind_free_face(corners, 1e-9 * (corners[0] - corners[2]).norm())) {
+      const Eigen::Vector3d force = vec(normal) - mu * i;
+      Eigen::Matrix<double, 6, 1> column;
+      column << force, (p - centroid).cross(force);
+      columns.push_back(column);
+      on_a.push_back(a);
+    }
+  };
+  face(k.on_a, r.normal_a, true);
+  face(k.on_b, r.normal_b, false);
+  const auto n = static_cast<Eigen::Index>(columns.size());
+  Eigen::MatrixXd equations(5, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto& column = columns[static_cast<std::size_t>(j)];
+    equations.col(j) << e1.dot(column.head<3>()), e2.dot(column.head<3>()), column.tail<3>();
+  }
+  // The weight, 1 along -z, balanced across i; no moment about the centroid.
+  Eigen::VectorXd load(5);
+  load << e1.z(), e2.z(), 0.0, 0.0, 0.0;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(equations);
+  const Eigen::MatrixXd line = lu.kernel();
+  if (lu.rank() != 5 || line.cols() != 1) {
+    throw std::logic_error("wedge case " + std::to_string(c.seed) + ": the support equations are degenerate");
+  }
+  const Eigen::VectorXd base = lu.solve(load);
+  const Eigen::VectorXd z = line.col(0);
+  // max over λ of min_j (base_j + λ z_j): concave and piecewise linear, largest where two of the
+  // lines cross (the forces' sum across i is fixed, so the z_j differ in sign and it is bounded).
+  double best = -std::numeric_limits<double>::infinity(), best_lambda = 0.0;
+  for (Eigen::Index p = 0; p < n; ++p) {
+    for (Eigen::Index q = p + 1; q < n; ++q) {
+      if (z(p) == z(q)) continue;
+      const double lambda = (base(q) - base(p)) / (z(p) - z(q));
+      const double smallest = (base + lambda * z).minCoeff();
+      if (smallest > best) best = smallest, best_lambda = lambda;
+    }
+  }
+  const Eigen::VectorXd forces = base + best_lambda * z;
+  WedgeSlidingSupport out;
+  out.margin = best;
+  for (Eigen::Index j = 0; j < n; ++j) (on_a[static_cast<std::size_t>(j)] ? out.reaction_a : out.reaction_b) += forces(j);
+  return out;
 }
 
 nlohmann::ordered_json wedge_cut_document(const WedgeCase& c) {

@@ -107,11 +107,35 @@ double wedge_slide_acceleration(const WedgeLimitEquilibrium& reference, double g
 
 // s: how long a slide from rest may be compared with ½ a t² (a = wedge_slide_acceleration):
 // `at_most`, or for a fast slide 0.8 of the time the wedge's centroid takes to reach the free
-// face (y = 0). The reference takes the joints as unbounded; the slope's end there, and a wedge
-// whose centroid has slid past the free face's edge is no longer carried behind it and tips over
-// the edge (the 1.9 m³ wedge of the family at φ = 20° reaches it in 0.55 s). `at_most` for a
-// wedge that stays (a = 0). Throws what wedge_slide_acceleration throws.
+// face (y = 0), or 0.8 of the time it takes to slide to where it could no longer do so without
+// turning (wedge_sliding_support below; 0 when it cannot from the start). The reference takes
+// the joints as unbounded; the slope's end there, and a wedge whose centroid has slid past the
+// free face's edge is no longer carried behind it and tips over the edge (the 1.9 m³ wedge of
+// the family at φ = 20° reaches it in 0.55 s); before that, the faces it rests on shrink towards
+// the crest and may no longer hold its moments. `at_most` for a wedge that stays (a = 0).
+// Throws what wedge_slide_acceleration throws.
 double wedge_slide_time(const WedgeCase& c, const WedgeLimitEquilibrium& reference, double g, double at_most = 1.0);
+
+// Whether the slide reference holds for a rigid wedge: Hoek & Bray balance forces only. A wedge
+// sliding along i without turning needs, besides the reactions N_A, N_B, a distribution of them
+// over its contact faces that also balances the moments about its centroid. With the normal
+// forces at the corners of its faces (any pressure over a face is such a distribution) and the
+// friction tan φ of each opposing the motion along i, the unknowns are six corner forces against
+// five equations (force across i, moments): a line of solutions.
+struct WedgeSlidingSupport {
+  // The largest, over that line, of the smallest corner force, a fraction of the weight:
+  // > 0 when the wedge can slide on both joints without turning, < 0 when it must turn.
+  double margin = 0.0;
+  double reaction_a = 0.0;  // Σ of the corner forces on joint A, of the weight (= Hoek & Bray's)
+  double reaction_b = 0.0;  // on joint B
+};
+
+// The support of the case's wedge after it has slid `slid` m (>= 0) down i: its faces on the
+// joints are those of wedge_corners moved by slid · i, less what has passed the free face (the
+// joints end at y = 0). Valid for the same friction angle on both joints (as generated). Throws
+// std::invalid_argument for slid < 0 or unequal friction angles, std::logic_error when the
+// equations are degenerate (not a generated case).
+WedgeSlidingSupport wedge_sliding_support(const WedgeCase& c, double slid);
 
 struct WedgeSceneParams {
   double kn = 1.0e10;       // N/m per constraint, finite > 0; kt = kn / 10
