@@ -10,7 +10,8 @@ point: a fixed, non-convex base and the tetrahedral wedge) with their references
   slide (FS < 1):   `rockcontact run SCENE` for the scene's 1 s, the wedge centroid's displacement
                     along the line of intersection (tracks.csv) against 1/2 g sin(psi_i) (1 - FS) t^2,
                     up to the case's slide_time_s (wedge_slide_time: 1 s, or less where the wedge
-                    would reach the free face and tip over its edge).
+                    would reach the free face and tip over its edge, or could no longer slide
+                    without turning).
 
 Prints Markdown tables and the worst errors; exits 1 when a command failed or a factor of safety
 is only a bound (status stable_at_max or slides_at_min). Standard library only.
@@ -114,15 +115,18 @@ def slides(args, cases, work, failures):
     if not sliding:
         return []
     print(f"\nSlide along the line of intersection, FS < 1 (`rockcontact run`, 1 s, measured up to t: 1 s or "
-          f"0.8 of the time the centroid takes to reach the free face): 1/2 g sin(psi_i) (1 - FS) t^2\n")
-    print("| case | Hoek–Bray FS | plunge | t (s) | reference (m) | DDA (m) | error | wall s |")
-    print("|---|---|---|---|---|---|---|---|")
+          f"0.8 of the time the centroid takes to reach the free face or to where the wedge would have to turn): "
+          f"1/2 g sin(psi_i) (1 - FS) t^2; support: the least corner force that lets it slide without turning, "
+          f"of its weight, at the start\n")
+    print("| case | Hoek–Bray FS | plunge | support | t (s) | reference (m) | DDA (m) | error | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|")
     errors = []
     for k, case in sliding:
         ref = case["reference"]
         out_dir = work / f"run_{k}"
         out, wall = timed([args.exe, "run", str(work / case["scene"]), "--out", str(out_dir)])
-        head = f"| {k} | {ref['factor_of_safety']:.4f} | {ref['plunge_deg']:.1f} |"
+        head = (f"| {k} | {ref['factor_of_safety']:.4f} | {ref['plunge_deg']:.1f} "
+                f"| {ref['sliding_support_of_weight']:.1%} |")
         if out.returncode != 0:
             failures.append(failure(f"case {k} run", out))
         if not (out_dir / "tracks.csv").exists():
