@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <limits>
 #include <utility>
 #include <vector>
 
@@ -283,7 +283,8 @@ WedgeSlidingSupport wedge_sliding_support(const WedgeCase& c, double slid) {
   const Eigen::VectorXd base = lu.solve(load);
   const Eigen::VectorXd z = line.col(0);
   // max over λ of min_j (base_j + λ z_j): concave and piecewise linear, largest where two of the
-  // lines cross (the forces' sum across i is fixed, so the z_j differ in sign and it is bounded).
+  // lines cross. Bounded: the balance across i fixes each joint's sum (the joints' normals are
+  // independent there), so along the line each joint's z_j sum to 0 and some fall as others rise.
   double best = -std::numeric_limits<double>::infinity(), best_lambda = 0.0;
   for (Eigen::Index p = 0; p < n; ++p) {
     for (Eigen::Index q = p + 1; q < n; ++q) {

@@ -113,7 +113,7 @@ double wedge_slide_acceleration(const WedgeLimitEquilibrium& reference, double g
 // free face's edge is no longer carried behind it and tips over the edge (the 1.9 m³ wedge of
 // the family at φ = 20° reaches it in 0.55 s); before that, the faces it rests on shrink towards
 // the crest and may no longer hold its moments. `at_most` for a wedge that stays (a = 0).
-// Throws what wedge_slide_acceleration throws.
+// Throws what wedge_slide_acceleration and wedge_sliding_support throw.
 double wedge_slide_time(const WedgeCase& c, const WedgeLimitEquilibrium& reference, double g, double at_most = 1.0);
 
 // Whether the slide reference holds for a rigid wedge: Hoek & Bray balance forces only. A wedge
