@@ -112,6 +112,12 @@ def safety_factors(args, cases, work, failures):
 
 def slides(args, cases, work, failures):
     sliding = [(k, c) for k, c in enumerate(cases) if c["reference"]["factor_of_safety"] < 1]
+    # A wedge that would have to turn from the start has no slide reference (slide_time_s 0).
+    for k, c in sliding:
+        if c["reference"]["slide_time_s"] == 0:
+            print(f"case {k}: FS {c['reference']['factor_of_safety']:.4f} but it cannot slide without turning "
+                  f"(support {c['reference']['sliding_support_of_weight']:.1%}): no slide reference")
+    sliding = [(k, c) for k, c in sliding if c["reference"]["slide_time_s"] > 0]
     if not sliding:
         return []
     print(f"\nSlide along the line of intersection, FS < 1 (`rockcontact run`, 1 s, measured up to t: 1 s or "

@@ -422,30 +422,38 @@ BOOST_AUTO_TEST_CASE(keel_edges_parallel_but_for_rounding_span_no_plane) {
 // Hoek & Bray balance forces only; the slide reference holds for a rigid wedge only if it can
 // also slide without turning. wedge_sliding_support finds corner forces that balance the moments
 // too: their sums on each joint must be Hoek & Bray's reactions (to 1e-9 of the weight, rounding
-// of two solutions of the force balance), and for every sliding case of the family the smallest
-// corner force, at the start of the slide and at the end of the window it is compared over
-// (wedge_slide_time, which stops short of where the support runs out), is positive (the least
-// at the start, of the 200 cases at phi = 20, is 0.7 % of the weight; the family's case 1, whose
-// wedge the engine lifts off joint B, has 15 %): such a lift-off is the engine's doing, not the
-// reference's. The bound can fail: far more friction than lets the wedges slide (phi = 80)
-// drags their faces up the line hard enough, below the centroid, to turn some of them.
+// of two solutions of the force balance). Over the family (the test's seed, 300 wedges at
+// phi = 20), a slider with support at the start is compared (wedge_slide_time > 0) over a window
+// that ends with support left; one without (about 1 in 150 sliders on the seeds tried: 2, 3, 42,
+// 1234) gets no slide reference (wedge_slide_time 0). Seed 1's first ten, the validation's,
+// all have support (the least 5 % of the weight; case 1, which the engine lifts off joint B,
+// 15 %): such a lift-off is the engine's doing, not the reference's. The bound can fail: far
+// more friction than lets the wedges slide (phi = 80) drags their faces up the line hard enough,
+// below the centroid, to turn some of them.
 BOOST_AUTO_TEST_CASE(a_sliding_wedge_of_the_family_does_not_need_to_turn) {
-  std::size_t sliding = 0;
-  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 200, 20.0)) {
+  const std::uint64_t seed = rockcontact::testing::seed_for("a_sliding_wedge_of_the_family_does_not_need_to_turn", 3);
+  std::size_t compared = 0;
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(seed, 300, 20.0)) {
     const dyn::WedgeLimitEquilibrium r = dyn::wedge_factor_of_safety(c.a, c.b, 1.0);
     const dyn::WedgeSlidingSupport start = dyn::wedge_sliding_support(c, 0.0);
     BOOST_TEST(std::abs(start.reaction_a - r.normal_reaction_a) < 1e-9, "case seed " << c.seed);
     BOOST_TEST(std::abs(start.reaction_b - r.normal_reaction_b) < 1e-9, "case seed " << c.seed);
     if (r.factor_of_safety >= 1.0) continue;
-    ++sliding;
     const double t = dyn::wedge_slide_time(c, r, 9.81);
+    BOOST_TEST((t > 0.0) == (start.margin > 0.0), "case seed " << c.seed << ": support " << start.margin);
+    if (t == 0.0) continue;
+    ++compared;
     const double slid = 0.5 * dyn::wedge_slide_acceleration(r, 9.81) * t * t;
     const dyn::WedgeSlidingSupport end = dyn::wedge_sliding_support(c, slid);
-    BOOST_TEST(start.margin > 0.0, "case seed " << c.seed << ": " << start.margin);
     BOOST_TEST(end.margin > 0.0, "case seed " << c.seed << ": " << end.margin << " at " << slid << " m");
     BOOST_TEST(std::abs(end.reaction_a - r.normal_reaction_a) < 1e-9, "case seed " << c.seed);
   }
-  BOOST_TEST(sliding >= 50u);
+  BOOST_TEST(compared >= 100u);
+  for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 10, 20.0)) {
+    if (dyn::wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety < 1.0) {
+      BOOST_TEST(dyn::wedge_sliding_support(c, 0.0).margin > 0.05, "seed 1, case seed " << c.seed);
+    }
+  }
   double least = 1.0;
   for (const dyn::WedgeCase& c : dyn::generate_wedges(1, 200, 80.0)) {
     least = std::min(least, dyn::wedge_sliding_support(c, 0.0).margin);

@@ -772,7 +772,7 @@ void wedge3d(const Validator& v, std::vector<ValidationRow>& rows) {
 //   factor of safety  the worst relative error over the first 10 wedges at φ = 40° (safety_factor,
 //                     as `rockcontact safety-factor`), within 0.5 %;
 //   slide             the worst relative error over the first 5 of the family that cannot stand
-//                     at φ = 20° (FS < 1): the wedge's displacement along the line of
+//                     at φ = 20° (FS < 1) and can slide without turning (wedge_sliding_support): the wedge's displacement along the line of
 //                     intersection from rest against ½ g sin ψ_i (1 − FS) t², within 1 %, at
 //                     t = wedge_slide_time (1 s, or less where the wedge would reach the free
 //                     face and tip over its edge).
@@ -831,7 +831,9 @@ void wedge_family(const Validator& v, std::vector<ValidationRow>& rows) {
   for (std::size_t n = slide_cases; sliding.size() < slide_cases; n += slide_cases) {
     sliding.clear();
     for (const WedgeCase& c : generate_wedges(seed, n, 20.0)) {
-      if (sliding.size() < slide_cases && wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety < 1.0) {
+      // A wedge that would have to turn from the start has no slide reference (wedge_slide_time 0).
+      if (sliding.size() < slide_cases && wedge_factor_of_safety(c.a, c.b, 1.0).factor_of_safety < 1.0 &&
+          wedge_sliding_support(c, 0.0).margin > 0.0) {
         sliding.push_back(c);
       }
     }

@@ -256,8 +256,8 @@ WedgeSlidingSupport wedge_sliding_support(const WedgeCase& c, double slid) {
   std::vector<bool> on_a;
   const auto face = [&](const Point3& other, const Point3& normal, bool a) {
     const std::vector<Eigen::Vector3d> corners{vec(k.crest) + shift, vec(other) + shift, vec(k.daylight) + shift};
+    const Eigen::Vector3d force = vec(normal) - mu * i;
     for (const Eigen::Vector3d& p : behind_free_face(corners, 1e-9 * (corners[0] - corners[2]).norm())) {
-      const Eigen::Vector3d force = vec(normal) - mu * i;
       Eigen::Matrix<double, 6, 1> column;
       column << force, (p - centroid).cross(force);
       columns.push_back(column);
