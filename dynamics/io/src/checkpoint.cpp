@@ -118,7 +118,13 @@ ordered_json engine(const Snapshot& s) {
           {"max_gravitational", s.max_gravitational},
           {"max_penetration", s.max_penetration},
           {"equilibrium",
-           {{"ran", e.ran}, {"blocks", e.blocks}, {"iterations", e.iterations}, {"ratio", e.ratio}}},
+           {{"ran", e.ran},
+            {"blocks", e.blocks},
+            {"iterations", e.iterations},
+            {"ratio", e.ratio},
+            {"converged", e.converged},
+            {"seconds", e.seconds},
+            {"unsettled", e.unsettled}}},
           {"predicates",
            {{"calls", s.predicates.calls}, {"fallbacks", s.predicates.fallbacks}}}};
 }
@@ -279,8 +285,22 @@ Snapshot read_engine(const Reader& r, const json& value, const std::string& at) 
   s.max_penetration = r.real(value, at, "max_penetration");
   const std::string equilibrium_path = json_child(at, "equilibrium");
   const json& e = r.member(value, at, "equilibrium");
-  s.equilibrium = {r.flag(e, equilibrium_path, "ran"), r.count(e, equilibrium_path, "blocks"),
-                   r.count(e, equilibrium_path, "iterations"), r.real(e, equilibrium_path, "ratio")};
+  s.equilibrium.ran = r.flag(e, equilibrium_path, "ran");
+  s.equilibrium.blocks = r.count(e, equilibrium_path, "blocks");
+  s.equilibrium.iterations = r.count(e, equilibrium_path, "iterations");
+  s.equilibrium.ratio = r.real(e, equilibrium_path, "ratio");
+  // A checkpoint written before these were kept has only the four above; its run's summary
+  // then reports the pre-solve as not converged, in no measured time, with no unsettled blocks.
+  if (e.contains("converged")) {
+    s.equilibrium.converged = r.flag(e, equilibrium_path, "converged");
+    s.equilibrium.seconds = r.real(e, equilibrium_path, "seconds");
+    const json& unsettled = r.array(e, equilibrium_path, "unsettled");
+    const std::string unsettled_path = json_child(equilibrium_path, "unsettled");
+    for (std::size_t k = 0; k < unsettled.size(); ++k) {
+      s.equilibrium.unsettled.push_back(
+          r.json_reader().string(unsettled[k], json_element(unsettled_path, k), "a block id"));
+    }
+  }
   const std::string predicates_path = json_child(at, "predicates");
   const json& predicates = r.member(value, at, "predicates");
   s.predicates.calls = r.counts<kernel::predicate_kind_count>(predicates, predicates_path, "calls");
