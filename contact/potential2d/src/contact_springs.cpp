@@ -100,4 +100,29 @@ std::array<GaussSpring, 2> gauss_springs(const ContactLine& line, Interval part,
   return out;
 }
 
+double part_force_change(const ContactLine& line, Interval a, Interval b, double kn, double H,
+                         double moved_from, double moved_to) {
+  const double g0 = line.gap_from + moved_from, g1 = line.gap_to + moved_to;
+  // The integral of |g| over [t0, t1] (fractions of the line), g linear from g0 at 0 to g1 at 1.
+  const auto magnitude = [&](double t0, double t1) {
+    if (!(t0 < t1)) return 0.0;
+    const double u = g0 + (g1 - g0) * t0, v = g0 + (g1 - g0) * t1;
+    if ((u < 0.0) == (v < 0.0)) return 0.5 * (std::abs(u) + std::abs(v)) * (t1 - t0);
+    const double zero = t0 + (t1 - t0) * u / (u - v);
+    return 0.5 * (std::abs(u) * (zero - t0) + std::abs(v) * (t1 - zero));
+  };
+  double changed = 0.0;
+  if (a.empty() || b.empty() || std::max(a.first, b.first) >= std::min(a.last, b.last)) {
+    // Disjoint (or one empty): all of both.
+    if (!a.empty()) changed += magnitude(a.first, a.last);
+    if (!b.empty()) changed += magnitude(b.first, b.last);
+  } else {
+    // Overlapping: the two end pieces of their union outside their intersection.
+    changed = magnitude(std::min(a.first, b.first), std::max(a.first, b.first)) +
+              magnitude(std::min(a.last, b.last), std::max(a.last, b.last));
+  }
+  const double length = std::hypot(line.to.x - line.from.x, line.to.y - line.from.y);
+  return 2.0 * kn / H * length * changed;
+}
+
 }  // namespace rockcontact::contact

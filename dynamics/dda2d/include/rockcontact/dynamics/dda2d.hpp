@@ -81,16 +81,20 @@
 // (contact_springs.hpp) the distributed normal spring 2 kn / H over the part where the gap is
 // closed, at two Gauss points; the friction spring kt of each closed pair. Each iteration solves K Δd = F (Eigen's
 // sparse LDLᵀ) inside an open-close iteration that moves each line's closed part to where the
-// solution leaves its gap negative, then moves the blocks by Δd (at most a quarter of a block's
-// inradius at once) and evaluates F again. An iteration that does not lower the ratio is
-// followed by Levenberg-Marquardt damping (diag K). It stops when the out-of-balance force ratio
+// solution leaves its gap negative, until no part's move changes its springs' force by more
+// than a tenth of the tolerance times F_ref (below), then moves the blocks by Δd (at most a
+// quarter of a block's inradius at once) and evaluates F again. An iteration that does not
+// lower the ratio is followed by Levenberg-Marquardt damping (diag K). It stops when the
+// out-of-balance force ratio
 //   R = max_i |F_i| / F_ref,   |F_i|² = F_x² + F_y² + (F_r0² + F_ex² + F_ey² + F_gxy²) / r_i²
 // (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest
 // block weight or normal contact force of the settling blocks, in the configuration reached)
-// is below the tolerance, or after 100 iterations (Equilibrium::converged says which; strict
-// refuses the second). Rigid blocks settle in two or three iterations; a deformable jointed
-// mass takes tens to hundreds (docs/performance.md): the sides of its blocks, at exact touch,
-// carry forces of a rounding's overlap that open and close from one iteration to the next.
+// is below the tolerance. After 30 iterations without it, dynamic relaxation (as in "Static
+// analysis" below, contacts locked) finishes from the state reached, for at most 20 000
+// iterations (Equilibrium::converged says whether it got there; strict refuses it if not).
+// Rigid blocks settle in two or three iterations, a joint-cut mass of 32 x 32 deformable
+// blocks in 8; past ~45 blocks of height Newton's iterations stall (docs/performance.md, "The
+// 2D initial equilibrium").
 // A block whose solve would move it by more than its inradius (its resting contacts do not
 // hold it: it topples, slides on a frictionless face or hangs in the air) has no static state
 // there. Automatic (the default): it starts from its given state, with the blocks resting on a
