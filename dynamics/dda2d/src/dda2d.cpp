@@ -51,8 +51,8 @@ constexpr double relaxation_omega_h = 1.0;
 // tolerance times the reference force) a line's closed part may move and count as unchanged:
 // a tenth, so that the parts it stops with leave the ratio an order below the tolerance. Judged
 // by how far its ends move instead, a part stops off where the forces are: 5 % of a 1 m line
-// whose gap changes by a micrometre along it is ~15 N, a bias Newton's iterations do not
-// remove (a 2 x 2 grid of deformable blocks stalled at a ratio of 5.8·10⁻⁵).
+// whose gap changes by 3 µm along it is ~15 N at kn = 2 GPa, a bias Newton's iterations do
+// not remove (a 2 x 2 grid of deformable blocks stalled at a ratio of 5.8·10⁻⁵).
 constexpr std::size_t newton_iterations = 30;
 constexpr std::size_t relaxation_iterations = 20000;
 constexpr double newton_step_cap = 0.25;

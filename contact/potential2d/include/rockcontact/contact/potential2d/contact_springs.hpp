@@ -70,8 +70,9 @@ std::array<GaussSpring, 2> gauss_springs(const ContactLine& line, Interval part,
 // integral of |gap| over the stretch in one part and not the other. Its moment about any point
 // of the line changes by at most this times the line's length. An open-close iteration that
 // compares parts by this, not by how far their ends moved, stops with the forces it solved
-// for: a part end that moves a fraction s along a line whose gap changes by Δg along it changes
-// the force by kn / H Δg s², which at s = 0.05 of a 1 m line is ~15 N for a micrometre's tilt.
+// for: a part end that moves a fraction s along a line of length L whose gap changes by Δg
+// along it, from where the gap is zero, changes the force by kn / H Δg s² L: at kn = 2 GPa,
+// H = L = 1 m and s = 0.05, ~15 N for a tilt of 3 µm.
 double part_force_change(const ContactLine& line, Interval a, Interval b, double kn, double H,
                          double moved_from = 0.0, double moved_to = 0.0);
 
