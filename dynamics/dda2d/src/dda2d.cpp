@@ -55,6 +55,10 @@ constexpr double relaxation_omega_h = 1.0;
 // not remove (a 2 x 2 grid of deformable blocks stalled at a ratio of 5.8·10⁻⁵).
 constexpr std::size_t newton_iterations = 30;
 constexpr std::size_t relaxation_iterations = 20000;
+// How often the relaxation reports progress and looks for a new least ratio, and after how
+// many iterations without one it gives up.
+constexpr std::size_t relaxation_check = 100;
+constexpr std::size_t relaxation_patience = 5000;
 constexpr double newton_step_cap = 0.25;
 constexpr double min_damping = 1.0e-3;
 constexpr double newton_regularization = 1.0e-9;
@@ -271,7 +275,10 @@ struct Dda2d::Impl {
   Resting resting_pairs() const;
   double reference_force(const std::vector<char>& moving) const;
   SettleRound newton(const std::vector<char>& moving, const Resting& resting);
-  bool relax_to_tolerance(const std::vector<char>& moving, const Resting& resting);
+  struct BestState;
+  void keep_if_best(BestState& best) const;
+  void restore(const BestState& best);
+  bool relax_to_tolerance(const std::vector<char>& moving, const Resting& resting, BestState& best);
   struct LinearModel;
   void build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
                    LinearModel& model) const;
@@ -1274,6 +1281,14 @@ void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::v
   }
 }
 
+// The pre-solve's least out-of-balance state so far: where it starts from when it ends above
+// the tolerance.
+struct Dda2d::Impl::BestState {
+  double ratio = std::numeric_limits<double>::infinity();
+  std::vector<BlockState> states;
+  std::vector<FrictionRecord> friction;
+};
+
 // One round of the pre-solve over the blocks in `moving` (dda2d.hpp): Newton's iterations to
 // the tolerance, or the blocks without a static state.
 SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& resting) {
@@ -1291,6 +1306,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
   LinearModel model;
   Eigen::VectorXd delta(unknowns);
   double damping = 0.0, previous_ratio = 0.0;
+  BestState best;
   for (std::size_t iteration = 0;; ++iteration) {
     std::size_t worst = 0;
     const double reference = reference_force(moving);
@@ -1301,11 +1317,14 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
       return {};
     }
+    keep_if_best(best);
     if (iteration == newton_iterations) {
       // Every block is held (none ran away), but Newton's steps no longer lower the ratio: a
       // contact keeps crossing a kink (a part that opens and closes, a block rocking on a short
-      // line). Dynamic relaxation, which needs no tangent, finishes from the state reached.
-      equilibrium.converged = relax_to_tolerance(moving, resting);
+      // line). Dynamic relaxation, which needs no tangent, finishes from the state reached; if
+      // it does not get there, the run starts from the least out-of-balance state either found.
+      equilibrium.converged = relax_to_tolerance(moving, resting, best);
+      if (!equilibrium.converged && best.ratio < equilibrium.ratio) restore(best);
       equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
       if (!equilibrium.converged && params.initial_equilibrium == InitialEquilibrium::strict) {
         throw StabilityError("dda2d: the initial equilibrium was not reached in " + std::to_string(equilibrium.iterations) +
@@ -1372,16 +1391,45 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
 // The pre-solve's finish (newton): dynamic relaxation ("Static analysis", dda2d.hpp) of the
 // blocks in `moving`, contacts locked, from the state reached, to the tolerance (true) or
 // relaxation_iterations. Its iterations count in Equilibrium::iterations.
-bool Dda2d::Impl::relax_to_tolerance(const std::vector<char>& moving, const Resting& resting) {
+bool Dda2d::Impl::relax_to_tolerance(const std::vector<char>& moving, const Resting& resting, BestState& best) {
   prepare_relaxation(moving, resting.adjacent);
+  std::size_t last_best = 0;
   for (std::size_t k = 0; k < relaxation_iterations; ++k, ++equilibrium.iterations) {
     std::size_t worst = 0;
     equilibrium.ratio = out_of_balance(moving, reference_force(moving), worst);
     if (equilibrium.ratio < params.equilibrium_tolerance) return true;
-    if (params.equilibrium_progress && k % 100 == 0) params.equilibrium_progress(equilibrium.iterations, equilibrium.ratio);
+    if (k % relaxation_check == 0) {
+      if (params.equilibrium_progress) params.equilibrium_progress(equilibrium.iterations, equilibrium.ratio);
+      if (equilibrium.ratio < best.ratio) {
+        keep_if_best(best);
+        last_best = k;
+      } else if (k - last_best >= relaxation_patience) {
+        return false;
+      }
+    }
     relax_once();
   }
   return false;
+}
+
+void Dda2d::Impl::keep_if_best(BestState& best) const {
+  if (!(equilibrium.ratio < best.ratio)) return;
+  best.ratio = equilibrium.ratio;
+  best.states = states;
+  best.friction = friction;
+}
+
+// Back to `best`: positions, stresses and springs, and the forces there.
+void Dda2d::Impl::restore(const BestState& best) {
+  states = best.states;
+  friction = best.friction;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    rebuild_parts(i);
+    refresh(i);
+  }
+  for (Body& b : bodies) b.increment = {};
+  evaluate_forces();
+  equilibrium.ratio = best.ratio;
 }
 
 // Static analysis: every movable block relaxes, under the scene's friction law.
