@@ -90,8 +90,10 @@
 // (r_i the radius of gyration, so moments count as forces at that arm; F_ref = the largest
 // block weight or normal contact force of the settling blocks, in the configuration reached)
 // is below the tolerance. After 30 iterations without it, dynamic relaxation (as in "Static
-// analysis" below, contacts locked) finishes from the state reached, for at most 20 000
-// iterations (Equilibrium::converged says whether it got there; strict refuses it if not).
+// analysis" below, contacts locked) goes on from the state reached, for at most 20 000
+// iterations, and gives up after 5 000 without a new least ratio (Equilibrium::converged says
+// whether it got there; strict refuses it if not). A run whose pre-solve did not get there
+// starts from the least out-of-balance state it found (Equilibrium::ratio is that state's).
 // Rigid blocks settle in two or three iterations, a joint-cut mass of 32 x 32 deformable
 // blocks in 8; past ~45 blocks of height Newton's iterations stall (docs/performance.md, "The
 // 2D initial equilibrium").
