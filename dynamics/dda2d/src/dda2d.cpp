@@ -275,9 +275,10 @@ struct Dda2d::Impl {
   Resting resting_pairs() const;
   double reference_force(const std::vector<char>& moving) const;
   SettleRound newton(const std::vector<char>& moving, const Resting& resting);
+  struct SettleState;
   struct BestState;
+  void restore(const SettleState& saved, const std::vector<char>& moving);
   void keep_if_best(BestState& best) const;
-  void restore(const BestState& best);
   bool relax_to_tolerance(const std::vector<char>& moving, const Resting& resting, BestState& best);
   struct LinearModel;
   void build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
@@ -1037,6 +1038,26 @@ void Dda2d::Impl::relax_once() {
   evaluate_forces();
 }
 
+// The pre-solve's state: positions, stresses and springs.
+struct Dda2d::Impl::SettleState {
+  std::vector<BlockState> states;
+  std::vector<FrictionRecord> friction;
+};
+
+// Back to `saved`: the blocks in `moving` (the others have not moved since), the springs,
+// and the forces there.
+void Dda2d::Impl::restore(const SettleState& saved, const std::vector<char>& moving) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].increment = {};
+    if (!moving[i]) continue;
+    states[i] = saved.states[i];
+    rebuild_parts(i);
+    refresh(i);
+  }
+  friction = saved.friction;
+  evaluate_forces();
+}
+
 // The pre-solve (dda2d.hpp, "Initial equilibrium"): rounds of Newton's method over the blocks
 // resting on a support (dynamics/common/equilibrium.hpp); then the release.
 void Dda2d::Impl::settle() {
@@ -1045,21 +1066,11 @@ void Dda2d::Impl::settle() {
   std::vector<char> fixed(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) fixed[i] = states[i].fixed;
   settling = true;
-  const std::vector<BlockState> start = states;
-  const std::vector<FrictionRecord> start_friction = friction;
+  const SettleState start{states, friction};
   const std::vector<std::size_t> unsettled = settle_in_rounds<StabilityError>(
       params.initial_equilibrium, resting.adjacent, fixed, [&](const std::vector<char>& moving) {
         SettleRound round = newton(moving, resting);
-        if (round.unsettled.empty()) return round;
-        // Back to the start for the next round: positions, stresses and springs.
-        for (std::size_t i = 0; i < bodies.size(); ++i) {
-          if (!moving[i]) continue;
-          states[i] = start[i];
-          rebuild_parts(i);
-          refresh(i);
-        }
-        friction = start_friction;
-        evaluate_forces();
+        if (!round.unsettled.empty()) restore(start, moving);  // back to the start for the next round
         return round;
       });
   settling = false;
@@ -1285,8 +1296,7 @@ void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::v
 // the tolerance.
 struct Dda2d::Impl::BestState {
   double ratio = std::numeric_limits<double>::infinity();
-  std::vector<BlockState> states;
-  std::vector<FrictionRecord> friction;
+  SettleState state;
 };
 
 // One round of the pre-solve over the blocks in `moving` (dda2d.hpp): Newton's iterations to
@@ -1324,7 +1334,10 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       // line). Dynamic relaxation, which needs no tangent, finishes from the state reached; if
       // it does not get there, the run starts from the least out-of-balance state either found.
       equilibrium.converged = relax_to_tolerance(moving, resting, best);
-      if (!equilibrium.converged && best.ratio < equilibrium.ratio) restore(best);
+      if (!equilibrium.converged && best.ratio < equilibrium.ratio) {
+        restore(best.state, moving);
+        equilibrium.ratio = best.ratio;
+      }
       equilibrium.blocks = static_cast<std::size_t>(std::count(moving.begin(), moving.end(), 1));
       if (!equilibrium.converged && params.initial_equilibrium == InitialEquilibrium::strict) {
         throw StabilityError("dda2d: the initial equilibrium was not reached in " + std::to_string(equilibrium.iterations) +
@@ -1415,21 +1428,7 @@ bool Dda2d::Impl::relax_to_tolerance(const std::vector<char>& moving, const Rest
 void Dda2d::Impl::keep_if_best(BestState& best) const {
   if (!(equilibrium.ratio < best.ratio)) return;
   best.ratio = equilibrium.ratio;
-  best.states = states;
-  best.friction = friction;
-}
-
-// Back to `best`: positions, stresses and springs, and the forces there.
-void Dda2d::Impl::restore(const BestState& best) {
-  states = best.states;
-  friction = best.friction;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    rebuild_parts(i);
-    refresh(i);
-  }
-  for (Body& b : bodies) b.increment = {};
-  evaluate_forces();
-  equilibrium.ratio = best.ratio;
+  best.state = {states, friction};
 }
 
 // Static analysis: every movable block relaxes, under the scene's friction law.
