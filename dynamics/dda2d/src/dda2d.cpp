@@ -64,6 +64,14 @@ constexpr double min_damping = 1.0e-3;
 constexpr double newton_regularization = 1.0e-9;
 constexpr std::size_t max_open_close = 20;
 constexpr double part_force_fraction = 0.1;
+// The stability probe (unstable_blocks): its power iterations, the largest move of a probe (of
+// the smallest inradius), the growth that marks a mode unstable, and the share of the mode's
+// largest move that names a block in it.
+constexpr std::size_t probe_iterations = 12;
+constexpr double probe_move = 1.0e-6;
+constexpr double probe_growth = 1.02;
+constexpr double probe_amplitude = 0.25;
+constexpr double probe_damping = 1.0;
 // Pairs apart by at most this fraction of the smaller perimeter count as resting on each other.
 constexpr double resting_gap = 1.0e-6;
 
@@ -285,11 +293,17 @@ struct Dda2d::Impl {
                    LinearModel& model) const;
   void solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                    const LinearModel& model, double damping, Eigen::VectorXd& delta) const;
+  Eigen::SparseMatrix<double> assemble_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                                             const LinearModel& model, double damping, Eigen::VectorXd& rhs) const;
+  std::vector<std::size_t> unstable_blocks(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                                           const LinearModel& model);
+  double farthest_move(std::size_t i, const Eigen::VectorXd& d, const std::vector<Eigen::Index>& offset) const;
   void solve_open_close(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                         LinearModel& model, double damping, double force_tolerance,
                         Eigen::VectorXd& delta) const;
   void prepare_relaxation(std::vector<char> moving, const std::vector<std::vector<std::size_t>>& adjacent);
   void relax_once();
+  void move_by_increments(const std::vector<char>& moving);
   double balance_ratio() const;
   double out_of_balance(const std::vector<char>& moving, double reference, std::size_t& worst) const;
   double gyration_squared(std::size_t i) const;
@@ -404,6 +418,11 @@ struct Dda2d::Impl {
   std::string critical_source;
   double max_penetration = 0.0;
   bool settling = false;  // inside settle(): tangential springs locked, no dashpots
+  // Inside settle(): the blocks a round leaves out (without a static state, resting only on
+  // those, or unsupported). They stay where they are, and their contacts have no friction: a
+  // neighbour that settles slides along a block that will topple or slide away instead of
+  // hanging on it.
+  std::vector<char> released;
   Equilibrium equilibrium;
   // The dynamic relaxation of the pre-solve and of the static analysis (dda2d.hpp).
   struct Relaxation {
@@ -784,7 +803,7 @@ void Dda2d::Impl::record_contact(const PartContact& m) {
   c.penetration = m.depth;
   std::size_t record = no_record;
   const std::optional<FrictionLaw>& friction_law = laws[law_index(i, j)].friction;
-  if (friction_law) {
+  if (friction_law && !(settling && (released[i] || released[j]))) {
     record = carry_friction(m.parts);
     contact::FrictionState& state = friction[record].state;
     const contact::FrictionResult r = contact::evaluate_friction(
@@ -1031,9 +1050,15 @@ void Dda2d::Impl::relax_once() {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (relaxation.moving[i]) bodies[i].increment = relaxation.velocity[i];
   }
+  move_by_increments(relaxation.moving);
+}
+
+// The pre-solve's move: the blocks in `moving` by their increments, their springs with them,
+// and the forces there.
+void Dda2d::Impl::move_by_increments(const std::vector<char>& moving) {
   advance_friction_records();
   for_each_movable([&](std::size_t i) {
-    if (relaxation.moving[i]) move(i);
+    if (moving[i]) move(i);
   });
   evaluate_forces();
 }
@@ -1069,6 +1094,9 @@ void Dda2d::Impl::settle() {
   const SettleState start{states, friction};
   const std::vector<std::size_t> unsettled = settle_in_rounds<StabilityError>(
       params.initial_equilibrium, resting.adjacent, fixed, [&](const std::vector<char>& moving) {
+        released.assign(bodies.size(), 0);
+        for (std::size_t i = 0; i < bodies.size(); ++i) released[i] = !fixed[i] && !moving[i];
+        evaluate_forces();
         SettleRound round = newton(moving, resting);
         if (!round.unsettled.empty()) restore(start, moving);  // back to the start for the next round
         return round;
@@ -1129,7 +1157,7 @@ void Dda2d::Impl::build_model(const std::vector<char>& moving, const std::vector
     // Every closed pair has its locked friction spring: a loaded one's is in F with its
     // stretch, a pair in touch starts one at its first overlap (as Table 1 of seed 001 starts a
     // new contact locked).
-    if (pair.friction) line.kt = pair.friction->kt;
+    if (pair.friction && !released[i] && !released[j]) line.kt = pair.friction->kt;
     // The open-close iteration starts from the parts that overlap or touch (to resting_gap):
     // from the parts that overlap alone, a column of blocks in touch would close one joint
     // per solve.
@@ -1156,9 +1184,22 @@ Vector6 generalized(const BlockState& b, Point2 at, Vector2 direction) {
 // regularisation. offset[i]: block i's first unknown (-1: not one).
 void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                               const LinearModel& model, double damping, Eigen::VectorXd& delta) const {
-  const Eigen::Index unknowns = delta.size();
+  Eigen::VectorXd rhs(delta.size());
+  const Eigen::SparseMatrix<double> stiffness = assemble_model(moving, offset, model, damping, rhs);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(stiffness);
+  if (solver.info() == Eigen::Success) delta = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !delta.allFinite()) {
+    throw StabilityError("dda2d: the initial equilibrium's stiffness could not be solved (" +
+                         std::to_string(delta.size()) + " unknowns)");
+  }
+}
+
+Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>& moving,
+                                                        const std::vector<Eigen::Index>& offset,
+                                                        const LinearModel& model, double damping,
+                                                        Eigen::VectorXd& rhs) const {
+  const Eigen::Index unknowns = rhs.size();
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd rhs(unknowns);
   double kn_scale = 0.0;
   for (const PairLaw& l : laws) kn_scale = std::max(kn_scale, l.normal.kn / l.normal.H);
   const auto dofs = [&](std::size_t b) { return unknowns_of(b); };
@@ -1240,12 +1281,7 @@ void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector
   }
   Eigen::SparseMatrix<double> stiffness(unknowns, unknowns);
   stiffness.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(stiffness);
-  if (solver.info() == Eigen::Success) delta = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !delta.allFinite()) {
-    throw StabilityError("dda2d: the initial equilibrium's stiffness could not be solved (" +
-                         std::to_string(unknowns) + " unknowns)");
-  }
+  return stiffness;
 }
 
 // The open-close iteration of one Newton iteration: solve, then move each line's closed part to
@@ -1292,6 +1328,100 @@ void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::v
   }
 }
 
+// The move of block i's farthest vertex under the unknowns `d` (m).
+double Dda2d::Impl::farthest_move(std::size_t i, const Eigen::VectorXd& d,
+                                  const std::vector<Eigen::Index>& offset) const {
+  Vector6 increment{};
+  for (Eigen::Index k = 0; k < unknowns_of(i); ++k) increment[static_cast<std::size_t>(k)] = d(offset[i] + k);
+  double farthest = 0.0;
+  const Point2& o = states[i].centroid;
+  for (const Point2& v : states[i].vertices) {
+    const Vector2 u = detail::transform({v.x - o.x, v.y - o.y}, increment);
+    farthest = std::max(farthest, std::hypot(u.x, u.y));
+  }
+  return farthest;
+}
+
+// The stability probe of a stalled pre-solve (dda2d.hpp): the blocks of a mode along which the
+// engine's forces push further the more the blocks move, so that no static state is near.
+//
+// Newton's iteration d <- d + K^-1 F(d) carries an error e to M e, M = I + K^-1 J, with J the
+// engine's tangent dF/dd and K the model's stiffness (no turn of the forces with the blocks).
+// Where the model is right M vanishes; along a mode v with J v = -lambda K v, M v = (1 - lambda)
+// v. A column whose weight's turning moment outgrows its joints' rocking stiffness (a free
+// column of blocks buckles above a height where q L³ = 7.84 EI) has lambda < 0 there: M's
+// eigenvalue exceeds 1, Newton's steps stall, and the column topples in the run. Power
+// iteration on M from Newton's step finds its dominant eigenvalue; J v is a finite difference of
+// the engine's forces (the blocks moved along v by probe_move of their inradius at most, and
+// restored). An eigenvalue above probe_growth names the blocks that move more than
+// probe_amplitude of the mode's largest move.
+std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& moving,
+                                                      const std::vector<Eigen::Index>& offset,
+                                                      const LinearModel& model) {
+  const std::size_t n = bodies.size();
+  Eigen::Index unknowns = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (moving[i]) unknowns += unknowns_of(i);
+  }
+  const auto gather = [&](Eigen::VectorXd& out) {
+    out.resize(unknowns);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!moving[i]) continue;
+      for (Eigen::Index k = 0; k < unknowns_of(i); ++k) out(offset[i] + k) = bodies[i].force[static_cast<std::size_t>(k)];
+    }
+  };
+  const auto largest_move = [&](const Eigen::VectorXd& d, double& reach) {
+    double most = 0.0;
+    reach = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!moving[i]) continue;
+      most = std::max(most, farthest_move(i, d, offset));
+      reach = std::min(reach, bodies[i].inradius);
+    }
+    return most;
+  };
+  Eigen::VectorXd rhs(unknowns);
+  LinearModel tangent = model;  // at the state reached: each line closed where it overlaps now
+  for (LinearModel::Line& line : tangent.lines) line.part = line.now;
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(assemble_model(moving, offset, tangent, 0.0, rhs));
+  if (solver.info() != Eigen::Success) return {};
+  Eigen::VectorXd forces;
+  gather(forces);
+  Eigen::VectorXd v = solver.solve(forces);
+  const SettleState here{states, friction};
+  double growth = 0.0;
+  for (std::size_t k = 0; k < probe_iterations; ++k) {
+    double reach = 0.0;
+    const double most = largest_move(v, reach);
+    if (!(most > 0.0) || !v.allFinite()) return {};
+    const double scale = probe_move * reach / most;
+    for (std::size_t i = 0; i < n; ++i) {
+      bodies[i].increment = {};
+      if (!moving[i]) continue;
+      for (Eigen::Index j = 0; j < unknowns_of(i); ++j) {
+        bodies[i].increment[static_cast<std::size_t>(j)] = scale * v(offset[i] + j);
+      }
+    }
+    move_by_increments(moving);
+    Eigen::VectorXd moved;
+    gather(moved);
+    restore(here, moving);
+    const Eigen::VectorXd jv = (moved - forces) / scale;
+    const Eigen::VectorXd w = v + solver.solve(jv);
+    double unused = 0.0;
+    growth = v.dot(w) > 0.0 ? largest_move(w, unused) / most : 0.0;
+    v = w;
+  }
+  std::vector<std::size_t> unstable;
+  if (!(growth > probe_growth)) return unstable;
+  double reach = 0.0;
+  const double most = largest_move(v, reach);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (moving[i] && farthest_move(i, v, offset) > probe_amplitude * most) unstable.push_back(i);
+  }
+  return unstable;
+}
+
 // The pre-solve's least out-of-balance state so far: where it starts from when it ends above
 // the tolerance.
 struct Dda2d::Impl::BestState {
@@ -1316,6 +1446,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
   LinearModel model;
   Eigen::VectorXd delta(unknowns);
   double damping = 0.0, previous_ratio = 0.0;
+  bool probed = false;
   BestState best;
   for (std::size_t iteration = 0;; ++iteration) {
     std::size_t worst = 0;
@@ -1328,6 +1459,21 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       return {};
     }
     keep_if_best(best);
+    if (!probed && (iteration == newton_iterations || damping >= probe_damping)) {
+      probed = true;
+      build_model(moving, resting.parts, model);
+      SettleRound round;
+      round.unsettled = unstable_blocks(moving, offset, model);
+      if (!round.unsettled.empty()) {
+        round.why = "dda2d: the initial equilibrium has no static state near the start for " +
+                    block_name(states[round.unsettled.front()].id) + " and " +
+                    std::to_string(round.unsettled.size() - 1) +
+                    " more blocks: the more they move, the more their weight pushes them on (they "
+                    "topple or buckle); set initial_equilibrium to \"auto\" to start them from their "
+                    "given state, or to false";
+        return round;
+      }
+    }
     if (iteration == newton_iterations) {
       // Every block is held (none ran away), but Newton's steps no longer lower the ratio: a
       // contact keeps crossing a kink (a part that opens and closes, a block rocking on a short
@@ -1369,12 +1515,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       for (Eigen::Index k = 0; k < unknowns_of(i); ++k) {
         b.increment[static_cast<std::size_t>(k)] = delta(offset[i] + k);
       }
-      double farthest = 0.0;
-      for (const Point2& v : states[i].vertices) {
-        const Point2& o = states[i].centroid;
-        const Vector2 u = detail::transform({v.x - o.x, v.y - o.y}, b.increment);
-        farthest = std::max(farthest, std::hypot(u.x, u.y));
-      }
+      const double farthest = farthest_move(i, delta, offset);
       if (farthest > b.inradius) {
         if (round.unsettled.empty()) {
           round.why = "dda2d: the initial equilibrium would move " + block_name(states[i].id) + " by " +
@@ -1393,11 +1534,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
         for (double& x : b.increment) x *= scale;
       }
     }
-    advance_friction_records();
-    for_each_movable([&](std::size_t i) {
-      if (moving[i]) move(i);
-    });
-    evaluate_forces();
+    move_by_increments(moving);
   }
 }
 

@@ -95,13 +95,27 @@
 // whether it got there; strict refuses it if not). A run whose pre-solve did not get there
 // starts from the least out-of-balance state it found (Equilibrium::ratio is that state's).
 // Rigid blocks settle in two or three iterations, a joint-cut mass of 32 x 32 deformable
-// blocks in 8; past ~45 blocks of height Newton's iterations stall (docs/performance.md, "The
-// 2D initial equilibrium").
+// blocks in 8 (docs/performance.md, "The 2D initial equilibrium").
 // A block whose solve would move it by more than its inradius (its resting contacts do not
 // hold it: it topples, slides on a frictionless face or hangs in the air) has no static state
-// there. Automatic (the default): it starts from its given state, with the blocks resting on a
-// support only through it, and is named in Equilibrium::unsettled; the rest are solved again
-// from the start. Strict: it is an error naming it.
+// there. Nor have blocks that drift off with small steps: K does not turn the contact forces
+// with the blocks, so it misses the weight's turning moment on a leaning column, and a column
+// taller than it can stand (a free column of blocks of width L buckles where q h³ = 7.84 EI,
+// EI = 2 kn L³ / (12 H) of each joint per unit of height: 46 m for 1 m blocks at kn = 2 GPa)
+// only stalls Newton's iterations. When they stall (the damping reaches 1, or after 30
+// iterations) a stability probe looks for such a mode. Newton's iteration carries an error e
+// to (I + K⁻¹ J) e, J the engine's tangent; along a mode with J v = -lambda K v that is
+// (1 - lambda) v, and lambda < 0 (the engine's stiffness along v is negative) shows as an
+// eigenvalue above 1. Twelve power iterations from Newton's step find the dominant one, J v
+// by finite differences of the engine's forces (the blocks moved by at most 10⁻⁶ of the
+// smallest inradius, then restored); above 1.02, the blocks that move more than a quarter of the
+// mode's largest move have no static state there. (For a free column the eigenvalue is about
+// (h / h_cr)³: 1.31 at 50 m and 1.82 at 56 m in the case above.)
+// Automatic (the default): blocks without a static state start from their given state, with
+// the blocks resting on a support only through them, and are named in Equilibrium::unsettled;
+// the rest are solved again from the start, without friction against the blocks left out (a
+// neighbour that settles slides along a block that will topple or slide away instead of
+// hanging on it). Strict: it is an error naming the first.
 // The friction records keep the locked stretch: the run starts with the static tangential
 // forces already in the springs, and a contact whose locked force exceeds its limit slips from
 // the first step. The time, the energies and their reference positions start after it.
