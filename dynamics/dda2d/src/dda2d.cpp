@@ -1125,6 +1125,7 @@ struct Dda2d::Impl::LinearModel {
     double kt = 0.0;  // the locked friction spring, along the tangent (0: frictionless)
   };
   std::vector<Line> lines;
+  mutable std::vector<Eigen::Triplet<double>> triplets;  // assembly scratch, kept between solves
 };
 
 // The lines of the model at the current configuration: the pairs resting at the start and the
@@ -1199,7 +1200,8 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
                                                         const LinearModel& model, double damping,
                                                         Eigen::VectorXd& rhs) const {
   const Eigen::Index unknowns = rhs.size();
-  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Triplet<double>>& triplets = model.triplets;
+  triplets.clear();
   double kn_scale = 0.0;
   for (const PairLaw& l : laws) kn_scale = std::max(kn_scale, l.normal.kn / l.normal.H);
   const auto dofs = [&](std::size_t b) { return unknowns_of(b); };
@@ -1225,19 +1227,31 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
       for (Eigen::Index k = 0; k < dofs(b); ++k) rhs(offset[b] + k) += sign * g[static_cast<std::size_t>(k)];
     }
   };
+  // The springs of one line, summed over the unknowns of CP then TP before they go into the
+  // matrix: k a a^T, a = (T_CP^T direction, -T_TP^T direction) at the spring's point.
+  Eigen::Matrix<double, 12, 12> local;
+  bool springs = false;
   const auto add_spring = [&](const LinearModel::Line& line, Point2 at, Vector2 direction, double k) {
+    const Vector6 on_cp = generalized(states[line.cp], at, direction);
+    const Vector6 on_tp = generalized(states[line.tp], at, direction);
+    Eigen::Matrix<double, 12, 1> a;
+    for (std::size_t r = 0; r < 6; ++r) {
+      a(static_cast<Eigen::Index>(r)) = on_cp[r];
+      a(static_cast<Eigen::Index>(r + 6)) = -on_tp[r];
+    }
+    local.noalias() += k * a * a.transpose();
+    springs = true;
+  };
+  const auto add_line_springs = [&](const LinearModel::Line& line) {
     const std::array<std::size_t, 2> block{line.cp, line.tp};
-    std::array<Vector6, 2> g;
-    for (std::size_t side = 0; side < 2; ++side) g[side] = generalized(states[block[side]], at, direction);
     for (std::size_t a = 0; a < 2; ++a) {
       if (!moving[block[a]]) continue;
       for (std::size_t b = 0; b < 2; ++b) {
         if (!moving[block[b]]) continue;
-        const double kab = a == b ? k : -k;
         for (Eigen::Index r = 0; r < dofs(block[a]); ++r) {
           for (Eigen::Index c = 0; c < dofs(block[b]); ++c) {
             triplets.emplace_back(offset[block[a]] + r, offset[block[b]] + c,
-                                  kab * g[a][static_cast<std::size_t>(r)] * g[b][static_cast<std::size_t>(c)]);
+                                  local(static_cast<Eigen::Index>(6 * a) + r, static_cast<Eigen::Index>(6 * b) + c));
           }
         }
       }
@@ -1245,6 +1259,8 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
   };
   for (const LinearModel::Line& line : model.lines) {
     const Vector2 n = line.geometry.normal;
+    local.setZero();
+    springs = false;
     if (!line.part.empty()) {
       for (const contact::GaussSpring& s : contact::gauss_springs(line.geometry, line.part, line.kn, line.H)) {
         add_force(line, s.at, n, -s.k * s.gap);
@@ -1256,21 +1272,21 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
         add_force(line, s.at, n, s.k * s.gap);
       }
     }
-    if (line.kt == 0.0) continue;
-    if (line.contact == no_record) {
+    if (line.kt != 0.0 && line.contact == no_record) {
       if (!line.part.empty()) {
         const Point2 centre{0.5 * (line.geometry.from.x + line.geometry.to.x), 0.5 * (line.geometry.from.y + line.geometry.to.y)};
         add_spring(line, centre, {-n.y, n.x}, line.kt);
       }
-      continue;
+    } else if (line.kt != 0.0) {
+      const ContactState& c = contacts[line.contact];
+      if (line.part.empty()) {  // the model opens it: its friction goes too
+        const double f = std::hypot(c.friction_force.x, c.friction_force.y);
+        if (f > 0.0) add_force(line, c.point, {c.friction_force.x / f, c.friction_force.y / f}, -f);
+      } else {
+        add_spring(line, c.point, {-n.y, n.x}, line.kt);
+      }
     }
-    const ContactState& c = contacts[line.contact];
-    if (line.part.empty()) {  // the model opens it: its friction goes too
-      const double f = std::hypot(c.friction_force.x, c.friction_force.y);
-      if (f > 0.0) add_force(line, c.point, {c.friction_force.x / f, c.friction_force.y / f}, -f);
-    } else {
-      add_spring(line, c.point, {-n.y, n.x}, line.kt);
-    }
+    if (springs) add_line_springs(line);
   }
   if (damping > 0.0) {
     Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(unknowns);
@@ -1381,7 +1397,8 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
     return most;
   };
   Eigen::VectorXd rhs(unknowns);
-  LinearModel tangent = model;  // at the state reached: each line closed where it overlaps now
+  LinearModel tangent;  // at the state reached: each line closed where it overlaps now
+  tangent.lines = model.lines;
   for (LinearModel::Line& line : tangent.lines) line.part = line.now;
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(assemble_model(moving, offset, tangent, 0.0, rhs));
   if (solver.info() != Eigen::Success) return {};
