@@ -423,6 +423,10 @@ struct Dda2d::Impl {
   // neighbour that settles slides along a block that will topple or slide away instead of
   // hanging on it.
   std::vector<char> released;
+  // Inside settle(): the stability probe has run. It runs once: each round it ends starts the
+  // Newton iterations again from the start, and a mass with many such columns (a 100 x 100
+  // grid) took more than 20 minutes of rounds.
+  bool equilibrium_probed = false;
   Equilibrium equilibrium;
   // The dynamic relaxation of the pre-solve and of the static analysis (dda2d.hpp).
   struct Relaxation {
@@ -1463,7 +1467,6 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
   LinearModel model;
   Eigen::VectorXd delta(unknowns);
   double damping = 0.0, previous_ratio = 0.0;
-  bool probed = false;
   BestState best;
   for (std::size_t iteration = 0;; ++iteration) {
     std::size_t worst = 0;
@@ -1476,8 +1479,8 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       return {};
     }
     keep_if_best(best);
-    if (!probed && (iteration == newton_iterations || damping >= probe_damping)) {
-      probed = true;
+    if (!equilibrium_probed && (iteration == newton_iterations || damping >= probe_damping)) {
+      equilibrium_probed = true;
       build_model(moving, resting.parts, model);
       SettleRound round;
       round.unsettled = unstable_blocks(moving, offset, model);

@@ -102,7 +102,7 @@
 // with the blocks, so it misses the weight's turning moment on a leaning column, and a column
 // taller than it can stand (a free column of blocks of width L buckles where q h³ = 7.84 EI,
 // EI = 2 kn L³ / (12 H) of each joint per unit of height: 46 m for 1 m blocks at kn = 2 GPa)
-// only stalls Newton's iterations. When they stall (the damping reaches 1, or after 30
+// only stalls Newton's iterations. When they first stall (the damping reaches 1, or after 30
 // iterations) a stability probe looks for such a mode. Newton's iteration carries an error e
 // to (I + K⁻¹ J) e, J the engine's tangent; along a mode with J v = -lambda K v that is
 // (1 - lambda) v, and lambda < 0 (the engine's stiffness along v is negative) shows as an
