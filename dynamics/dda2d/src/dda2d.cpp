@@ -1370,7 +1370,7 @@ double Dda2d::Impl::farthest_move(std::size_t i, const Eigen::VectorXd& d,
 // engine's tangent dF/dd and K the model's stiffness (no turn of the forces with the blocks).
 // Where the model is right M vanishes; along a mode v with J v = -lambda K v, M v = (1 - lambda)
 // v. A column whose weight's turning moment outgrows its joints' rocking stiffness (a free
-// column of blocks buckles above a height where q L³ = 7.84 EI) has lambda < 0 there: M's
+// column of blocks buckles above a height h where q h³ = 7.84 EI) has lambda < 0 there: M's
 // eigenvalue exceeds 1, Newton's steps stall, and the column topples in the run. Power
 // iteration on M from Newton's step finds its dominant eigenvalue; J v is a finite difference of
 // the engine's forces (the blocks moved along v by probe_move of their inradius at most, and
