@@ -298,6 +298,8 @@ struct Dda2d::Impl {
   std::vector<std::size_t> unstable_blocks(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                                            const LinearModel& model);
   double farthest_move(std::size_t i, const Eigen::VectorXd& d, const std::vector<Eigen::Index>& offset) const;
+  void set_increments(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                      const Eigen::VectorXd& d, double scale);
   void solve_open_close(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                         LinearModel& model, double damping, double force_tolerance,
                         Eigen::VectorXd& delta) const;
@@ -1349,6 +1351,18 @@ void Dda2d::Impl::solve_open_close(const std::vector<char>& moving, const std::v
   }
 }
 
+// Each block's increment: `scale` times its unknowns in `d` (zero for blocks not moving).
+void Dda2d::Impl::set_increments(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                                 const Eigen::VectorXd& d, double scale) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].increment = {};
+    if (!moving[i]) continue;
+    for (Eigen::Index k = 0; k < unknowns_of(i); ++k) {
+      bodies[i].increment[static_cast<std::size_t>(k)] = scale * d(offset[i] + k);
+    }
+  }
+}
+
 // The move of block i's farthest vertex under the unknowns `d` (m).
 double Dda2d::Impl::farthest_move(std::size_t i, const Eigen::VectorXd& d,
                                   const std::vector<Eigen::Index>& offset) const {
@@ -1391,16 +1405,17 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
       for (Eigen::Index k = 0; k < unknowns_of(i); ++k) out(offset[i] + k) = bodies[i].force[static_cast<std::size_t>(k)];
     }
   };
-  const auto largest_move = [&](const Eigen::VectorXd& d, double& reach) {
+  const auto largest_move = [&](const Eigen::VectorXd& d) {
     double most = 0.0;
-    reach = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
-      if (!moving[i]) continue;
-      most = std::max(most, farthest_move(i, d, offset));
-      reach = std::min(reach, bodies[i].inradius);
+      if (moving[i]) most = std::max(most, farthest_move(i, d, offset));
     }
     return most;
   };
+  double reach = std::numeric_limits<double>::infinity();  // the smallest inradius
+  for (std::size_t i = 0; i < n; ++i) {
+    if (moving[i]) reach = std::min(reach, bodies[i].inradius);
+  }
   Eigen::VectorXd rhs(unknowns);
   LinearModel tangent;  // at the state reached: each line closed where it overlaps now
   tangent.lines = model.lines;
@@ -1413,31 +1428,22 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
   const SettleState here{states, friction};
   double growth = 0.0;
   for (std::size_t k = 0; k < probe_iterations; ++k) {
-    double reach = 0.0;
-    const double most = largest_move(v, reach);
+    const double most = largest_move(v);
     if (!(most > 0.0) || !v.allFinite()) return {};
     const double scale = probe_move * reach / most;
-    for (std::size_t i = 0; i < n; ++i) {
-      bodies[i].increment = {};
-      if (!moving[i]) continue;
-      for (Eigen::Index j = 0; j < unknowns_of(i); ++j) {
-        bodies[i].increment[static_cast<std::size_t>(j)] = scale * v(offset[i] + j);
-      }
-    }
+    set_increments(moving, offset, v, scale);
     move_by_increments(moving);
     Eigen::VectorXd moved;
     gather(moved);
     restore(here, moving);
     const Eigen::VectorXd jv = (moved - forces) / scale;
     const Eigen::VectorXd w = v + solver.solve(jv);
-    double unused = 0.0;
-    growth = v.dot(w) > 0.0 ? largest_move(w, unused) / most : 0.0;
+    growth = v.dot(w) > 0.0 ? largest_move(w) / most : 0.0;
     v = w;
   }
   std::vector<std::size_t> unstable;
   if (!(growth > probe_growth)) return unstable;
-  double reach = 0.0;
-  const double most = largest_move(v, reach);
+  const double most = largest_move(v);
   for (std::size_t i = 0; i < n; ++i) {
     if (moving[i] && farthest_move(i, v, offset) > probe_amplitude * most) unstable.push_back(i);
   }
@@ -1530,12 +1536,8 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
     SettleRound round;
     double scale = 1.0;
     for (std::size_t i = 0; i < n; ++i) {
-      Body& b = bodies[i];
-      b.increment = {};
+      const Body& b = bodies[i];
       if (!moving[i]) continue;
-      for (Eigen::Index k = 0; k < unknowns_of(i); ++k) {
-        b.increment[static_cast<std::size_t>(k)] = delta(offset[i] + k);
-      }
       const double farthest = farthest_move(i, delta, offset);
       if (farthest > b.inradius) {
         if (round.unsettled.empty()) {
@@ -1550,11 +1552,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       scale = std::min(scale, newton_step_cap * b.inradius / std::max(farthest, 1e-300));
     }
     if (!round.unsettled.empty()) return round;
-    if (scale < 1.0) {
-      for (Body& b : bodies) {
-        for (double& x : b.increment) x *= scale;
-      }
-    }
+    set_increments(moving, offset, delta, scale);
     move_by_increments(moving);
   }
 }

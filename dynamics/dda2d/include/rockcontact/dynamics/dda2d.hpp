@@ -100,8 +100,9 @@
 // hold it: it topples, slides on a frictionless face or hangs in the air) has no static state
 // there. Nor have blocks that drift off with small steps: K does not turn the contact forces
 // with the blocks, so it misses the weight's turning moment on a leaning column, and a column
-// taller than it can stand (a free column of blocks of width L buckles where q h³ = 7.84 EI,
-// EI = 2 kn L³ / (12 H) of each joint per unit of height: 46 m for 1 m blocks at kn = 2 GPa)
+// taller than it can stand (a free column of blocks of width L and height s buckles where
+// q h³ = 7.84 EI, EI = 2 kn L³ s / (12 H), a joint's rocking stiffness times the joints'
+// spacing: 46 m for 1 m blocks at kn = 2 GPa, 23 m for 0.5 m blocks, 92 m for 2 m blocks)
 // only stalls Newton's iterations. When they first stall (the damping reaches 1, or after 30
 // iterations) a stability probe looks for such a mode. Newton's iteration carries an error e
 // to (I + K⁻¹ J) e, J the engine's tangent; along a mode with J v = -lambda K v that is
