@@ -289,7 +289,7 @@ struct Dda2d::Impl {
   void keep_if_best(BestState& best) const;
   bool relax_to_tolerance(const std::vector<char>& moving, const Resting& resting, BestState& best);
   struct LinearModel;
-  void build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
+  void build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting, bool first,
                    LinearModel& model) const;
   void solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                    const LinearModel& model, double damping, Eigen::VectorXd& delta) const;
@@ -1139,7 +1139,7 @@ struct Dda2d::Impl::LinearModel {
 // candidates of the last contact pass (their boxes overlap), with a contact line within a step's
 // reach.
 void Dda2d::Impl::build_model(const std::vector<char>& moving, const std::vector<PartPair>& resting,
-                              LinearModel& model) const {
+                              bool first, LinearModel& model) const {
   model.lines.clear();
   std::vector<std::pair<PartPair, std::size_t>> near;  // with the measured contact, if any
   std::size_t k = 0;
@@ -1166,10 +1166,13 @@ void Dda2d::Impl::build_model(const std::vector<char>& moving, const std::vector
     // stretch, a pair in touch starts one at its first overlap (as Table 1 of seed 001 starts a
     // new contact locked).
     if (pair.friction && !released[i] && !released[j]) line.kt = pair.friction->kt;
-    // The open-close iteration starts from the parts that overlap or touch (to resting_gap):
-    // from the parts that overlap alone, a column of blocks in touch would close one joint
-    // per solve.
-    const double touch = resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter);
+    // The open-close iteration starts from the parts that overlap, and in a round's first
+    // iteration also from those that touch (to resting_gap): from the parts that overlap alone,
+    // a column of blocks in touch would close one joint per solve. Later iterations start from
+    // the overlaps the last step left: a pair within a touch of each other but apart is then
+    // mostly one the last solve opened, and closing it again cost every iteration of a 150 x 30
+    // mass four solves to reopen ~850 of them (docs/performance.md).
+    const double touch = first ? resting_gap * std::min(bodies[i].perimeter, bodies[j].perimeter) : 0.0;
     line.now = contact::closed_part(line.geometry);
     line.part = contact::closed_part(line.geometry, -touch, -touch);
   }
@@ -1488,7 +1491,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
     keep_if_best(best);
     if (!equilibrium_probed && (iteration == newton_iterations || damping >= probe_damping)) {
       equilibrium_probed = true;
-      build_model(moving, resting.parts, model);
+      build_model(moving, resting.parts, iteration == 0, model);
       SettleRound round;
       round.unsettled = unstable_blocks(moving, offset, model);
       if (!round.unsettled.empty()) {
@@ -1522,7 +1525,7 @@ SettleRound Dda2d::Impl::newton(const std::vector<char>& moving, const Resting& 
       return {};
     }
     ++equilibrium.iterations;
-    build_model(moving, resting.parts, model);
+    build_model(moving, resting.parts, iteration == 0, model);
     // Levenberg-Marquardt: an iteration that did not lower the ratio crossed a kink of the
     // contacts (a part that opened or closed): the next step is damped by diag K, ten times
     // more each time, and relaxed by three for each that lowers it.
