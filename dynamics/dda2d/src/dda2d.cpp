@@ -12,10 +12,10 @@
 #include <utility>
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <omp.h>
 
 #include "block_matrices.hpp"
+#include "../../common/src/block_cholesky.hpp"
 #include "broad_phase.hpp"
 #include "rockcontact/contact/potential2d/contact_springs.hpp"
 #include "rockcontact/kernel/2d/block_cutting.hpp"
@@ -293,8 +293,9 @@ struct Dda2d::Impl {
                    LinearModel& model) const;
   void solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                    const LinearModel& model, double damping, Eigen::VectorXd& delta) const;
-  Eigen::SparseMatrix<double> assemble_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
-                                             const LinearModel& model, double damping, Eigen::VectorXd& rhs) const;
+  bool factorize_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                       const LinearModel& model, double damping, Eigen::VectorXd& rhs,
+                       BlockCholesky<6>& solver) const;
   std::vector<std::size_t> unstable_blocks(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                                            const LinearModel& model);
   double farthest_move(std::size_t i, const Eigen::VectorXd& d, const std::vector<Eigen::Index>& offset) const;
@@ -1132,7 +1133,10 @@ struct Dda2d::Impl::LinearModel {
     double kt = 0.0;  // the locked friction spring, along the tangent (0: frictionless)
   };
   std::vector<Line> lines;
-  mutable std::vector<Eigen::Triplet<double>> triplets;  // assembly scratch, kept between solves
+  // Assembly scratch, kept between solves: the stiffness's blocks, the solver's block of each
+  // body (-1: none) and the unknowns of each solver block.
+  mutable std::vector<BlockCholesky<6>::Term> terms;
+  mutable std::vector<int> block, sizes;
 };
 
 // The lines of the model at the current configuration: the pairs resting at the start and the
@@ -1196,37 +1200,39 @@ Vector6 generalized(const BlockState& b, Point2 at, Vector2 direction) {
 void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                               const LinearModel& model, double damping, Eigen::VectorXd& delta) const {
   Eigen::VectorXd rhs(delta.size());
-  const Eigen::SparseMatrix<double> stiffness = assemble_model(moving, offset, model, damping, rhs);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(stiffness);
-  if (solver.info() == Eigen::Success) delta = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !delta.allFinite()) {
+  BlockCholesky<6> solver;
+  const bool factored = factorize_model(moving, offset, model, damping, rhs, solver);
+  if (factored) delta = solver.solve(rhs);
+  if (!factored || !delta.allFinite()) {
     throw StabilityError("dda2d: the initial equilibrium's stiffness could not be solved (" +
                          std::to_string(delta.size()) + " unknowns)");
   }
 }
 
-Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>& moving,
-                                                        const std::vector<Eigen::Index>& offset,
-                                                        const LinearModel& model, double damping,
-                                                        Eigen::VectorXd& rhs) const {
-  const Eigen::Index unknowns = rhs.size();
-  std::vector<Eigen::Triplet<double>>& triplets = model.triplets;
-  triplets.clear();
+// Assembles K (with the damping) by blocks and F into rhs (solve_model), and factorises K.
+bool Dda2d::Impl::factorize_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
+                                  const LinearModel& model, double damping, Eigen::VectorXd& rhs,
+                                  BlockCholesky<6>& solver) const {
+  using Term = BlockCholesky<6>::Term;
+  std::vector<Term>& terms = model.terms;
+  std::vector<int>&block = model.block, &sizes = model.sizes;
+  terms.clear();
+  sizes.clear();
+  block.assign(bodies.size(), -1);
   double kn_scale = 0.0;
   for (const PairLaw& l : laws) kn_scale = std::max(kn_scale, l.normal.kn / l.normal.H);
   const auto dofs = [&](std::size_t b) { return unknowns_of(b); };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!moving[i]) continue;
+    block[i] = static_cast<int>(sizes.size());
+    sizes.push_back(static_cast<int>(dofs(i)));
     const Eigen::Index o = offset[i];
     for (Eigen::Index k = 0; k < dofs(i); ++k) rhs(o + k) = bodies[i].force[static_cast<std::size_t>(k)];
+    Term& t = terms.emplace_back(Term{block[i], block[i], Eigen::Matrix<double, 6, 6>::Zero()});
     const double k = newton_regularization * kn_scale * bodies[i].perimeter;
     const double arm2 = gyration_squared(i);
-    for (Eigen::Index r = 0; r < dofs(i); ++r) triplets.emplace_back(o + r, o + r, r < 2 ? k : k * arm2);
-    if (states[i].rigid) continue;
-    const Eigen::Matrix3d se = states[i].area * bodies[i].elasticity;
-    for (Eigen::Index r = 0; r < 3; ++r) {
-      for (Eigen::Index c = 0; c < 3; ++c) triplets.emplace_back(o + 3 + r, o + 3 + c, se(r, c));
-    }
+    for (Eigen::Index r = 0; r < dofs(i); ++r) t.value(r, r) = r < 2 ? k : k * arm2;
+    if (!states[i].rigid) t.value.bottomRightCorner<3, 3>() += states[i].area * bodies[i].elasticity;
   }
   // A force f along `direction` at `at`, on CP (and -f on TP); a spring of stiffness k there.
   const auto add_force = [&](const LinearModel::Line& line, Point2 at, Vector2 direction, double f) {
@@ -1253,19 +1259,10 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
     springs = true;
   };
   const auto add_line_springs = [&](const LinearModel::Line& line) {
-    const std::array<std::size_t, 2> block{line.cp, line.tp};
-    for (std::size_t a = 0; a < 2; ++a) {
-      if (!moving[block[a]]) continue;
-      for (std::size_t b = 0; b < 2; ++b) {
-        if (!moving[block[b]]) continue;
-        for (Eigen::Index r = 0; r < dofs(block[a]); ++r) {
-          for (Eigen::Index c = 0; c < dofs(block[b]); ++c) {
-            triplets.emplace_back(offset[block[a]] + r, offset[block[b]] + c,
-                                  local(static_cast<Eigen::Index>(6 * a) + r, static_cast<Eigen::Index>(6 * b) + c));
-          }
-        }
-      }
-    }
+    const bool cp = moving[line.cp] != 0, tp = moving[line.tp] != 0;
+    if (cp) terms.push_back({block[line.cp], block[line.cp], local.topLeftCorner<6, 6>()});
+    if (tp) terms.push_back({block[line.tp], block[line.tp], local.bottomRightCorner<6, 6>()});
+    if (cp && tp) terms.push_back({block[line.cp], block[line.tp], local.topRightCorner<6, 6>()});
   };
   for (const LinearModel::Line& line : model.lines) {
     const Vector2 n = line.geometry.normal;
@@ -1299,15 +1296,15 @@ Eigen::SparseMatrix<double> Dda2d::Impl::assemble_model(const std::vector<char>&
     if (springs) add_line_springs(line);
   }
   if (damping > 0.0) {
-    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(unknowns);
-    for (const Eigen::Triplet<double>& t : triplets) {
-      if (t.row() == t.col()) diagonal(t.row()) += t.value();
+    std::vector<Eigen::Matrix<double, 6, 1>> diagonal(sizes.size(), Eigen::Matrix<double, 6, 1>::Zero());
+    for (const Term& t : terms) {
+      if (t.row == t.col) diagonal[static_cast<std::size_t>(t.row)] += t.value.diagonal();
     }
-    for (Eigen::Index k = 0; k < unknowns; ++k) triplets.emplace_back(k, k, damping * diagonal(k));
+    for (std::size_t b = 0; b < diagonal.size(); ++b) {
+      terms.push_back({static_cast<int>(b), static_cast<int>(b), (damping * diagonal[b]).asDiagonal().toDenseMatrix()});
+    }
   }
-  Eigen::SparseMatrix<double> stiffness(unknowns, unknowns);
-  stiffness.setFromTriplets(triplets.begin(), triplets.end());
-  return stiffness;
+  return solver.factorize(sizes, terms);
 }
 
 // The open-close iteration of one Newton iteration: solve, then move each line's closed part to
@@ -1423,8 +1420,8 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
   LinearModel tangent;  // at the state reached: each line closed where it overlaps now
   tangent.lines = model.lines;
   for (LinearModel::Line& line : tangent.lines) line.part = line.now;
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(assemble_model(moving, offset, tangent, 0.0, rhs));
-  if (solver.info() != Eigen::Success) return {};
+  BlockCholesky<6> solver;
+  if (!factorize_model(moving, offset, tangent, 0.0, rhs, solver)) return {};
   Eigen::VectorXd forces;
   gather(forces);
   Eigen::VectorXd v = solver.solve(forces);

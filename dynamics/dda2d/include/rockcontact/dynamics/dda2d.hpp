@@ -79,10 +79,12 @@
 // gravity, -S sigma, and every tangential spring locked, contact::Slip::locked: no slip). The
 // stiffness K stands for them: S E on the strains; along each contact line
 // (contact_springs.hpp) the distributed normal spring 2 kn / H over the part where the gap is
-// closed, at two Gauss points; the friction spring kt of each closed pair. Each iteration solves K Δd = F (Eigen's
-// sparse LDLᵀ) inside an open-close iteration that moves each line's closed part to where the
-// solution leaves its gap negative, until no part's move changes its springs' force by more
-// than a tenth of the tolerance times F_ref (below), then moves the blocks by Δd (at most a
+// closed, at two Gauss points; the friction spring kt of each closed pair. Each iteration solves
+// K Δd = F (a sparse Cholesky on the blocks' 6 x 6 blocks, common/src/block_cholesky.hpp)
+// inside an open-close iteration that moves each line's closed part to where the solution
+// leaves its gap negative (starting from the parts that overlap, and in a round's first
+// iteration from those that touch as well), until no part's move changes its springs' force by
+// more than a tenth of the tolerance times F_ref (below), then moves the blocks by Δd (at most a
 // quarter of a block's inradius at once) and evaluates F again. An iteration that does not
 // lower the ratio is followed by Levenberg-Marquardt damping (diag K). It stops when the
 // out-of-balance force ratio
