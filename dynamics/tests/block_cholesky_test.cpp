@@ -15,11 +15,15 @@
 // (2) The same matrix handed in as pieces: each coupling split into two terms, half of them at
 //     (col, row) with the transposed value, the diagonals split in three. Same factorisation
 //     order, so the same solution to the rounding of the sums (10⁻¹⁴ relative).
-// (3) A chain (each block coupled to the next): a tree has an ordering with no fill, which the
+// (3) One solver object refactorising: the matrix of (1) with other values at the same places
+//     (the kept analysis), then a smaller system (a new analysis), each against its dense solve
+//     to 10⁻¹² as in (1).
+// (4) A chain (each block coupled to the next): a tree has an ordering with no fill, which the
 //     minimum degree finds, so L has exactly n - 1 blocks below its diagonal.
-// (4) A matrix with an indefinite diagonal block is refused (factorize returns false); block
+// (5) A matrix with an indefinite diagonal block is refused (factorize returns false); block
 //     sizes outside 1..6 and terms outside the blocks are errors that say so.
 
+#include <initializer_list>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -155,6 +159,22 @@ BOOST_AUTO_TEST_CASE(terms_in_pieces_and_transposed_add_up_to_the_same_matrix) {
   const Eigen::VectorXd xa = a.solve(b), xc = c.solve(b);
   BOOST_TEST((xa - xc).norm() / xa.norm() < 1e-14);
   BOOST_TEST((whole.dense * xc - b).norm() / b.norm() < 1e-13);
+}
+
+BOOST_AUTO_TEST_CASE(a_solver_refactorises_new_values_and_new_patterns) {
+  const System first = grid_system(12, 8, 5);
+  System second = first;  // the same places, other values: diagonals doubled, couplings halved
+  second.dense.setZero();
+  for (Term& t : second.terms) t.value *= t.row == t.col ? 2.0 : 0.5;
+  for (const Term& t : second.terms) add_dense(second, t);
+  const System third = grid_system(5, 4, 11);
+  BlockCholesky<6> solver;
+  for (const System* system : std::initializer_list<const System*>{&first, &second, &third}) {
+    const Eigen::VectorXd b = random_load(system->dense.rows(), 13);
+    const Eigen::VectorXd reference = Eigen::LLT<Eigen::MatrixXd>(system->dense).solve(b);
+    BOOST_REQUIRE(solver.factorize(system->sizes, system->terms));
+    BOOST_TEST((solver.solve(b) - reference).norm() / reference.norm() < 1e-12);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_chain_factorises_without_fill) {

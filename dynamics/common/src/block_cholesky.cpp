@@ -18,53 +18,38 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
 template <int B>
 bool BlockCholesky<B>::factorize(std::span<const int> sizes, std::span<const Term> terms) {
-  sizes_.assign(sizes.begin(), sizes.end());
-  starts_.assign(sizes_.size() + 1, 0);
-  for (std::size_t i = 0; i < sizes_.size(); ++i) {
-    if (sizes_[i] < 1 || sizes_[i] > B) {
-      throw std::invalid_argument("BlockCholesky: block " + std::to_string(i) + " has " + std::to_string(sizes_[i]) +
-                                  " unknowns, not 1 to " + std::to_string(B));
-    }
-    starts_[i + 1] = starts_[i] + sizes_[i];
-  }
-  const int n = static_cast<int>(sizes_.size());
-  for (const Term& t : terms) {
-    if (t.row < 0 || t.row >= n || t.col < 0 || t.col >= n) {
-      throw std::invalid_argument("BlockCholesky: a term at block (" + std::to_string(t.row) + ", " +
-                                  std::to_string(t.col) + ") is outside the " + std::to_string(n) + " blocks");
-    }
-  }
-  analyze(terms);
+  if (!analyzed_for(sizes, terms)) analyze(sizes, terms);
   load(terms);
-  std::vector<Block> y(at(n), Block::Zero());
-  std::vector<int> mark(at(n), -1), pattern(at(n)), filled(at(n), 0);
+  const int n = static_cast<int>(sizes_.size());
+  std::fill(mark_.begin(), mark_.end(), -1);
+  std::fill(filled_.begin(), filled_.end(), 0);
   for (int k = 0; k < n; ++k) {
     // Row k's pattern: the elimination tree's paths from A's blocks in column k up to k, in an
     // order where each block comes after every block below it on its path.
     int top = n;
-    mark[at(k)] = k;
+    mark_[at(k)] = k;
     const int last = a_start_[at(k) + 1] - 1;  // the diagonal block
     Block pivot = a_value_[at(last)];
     for (int p = a_start_[at(k)]; p < last; ++p) {
       int i = a_row_[at(p)];
-      y[at(i)] = a_value_[at(p)];
+      y_[at(i)] = a_value_[at(p)];
       int length = 0;
-      for (; mark[at(i)] != k; i = parent_[at(i)]) {
-        pattern[at(length++)] = i;
-        mark[at(i)] = k;
+      for (; mark_[at(i)] != k; i = parent_[at(i)]) {
+        row_pattern_[at(length++)] = i;
+        mark_[at(i)] = k;
       }
-      while (length > 0) pattern[at(--top)] = pattern[at(--length)];
+      while (length > 0) row_pattern_[at(--top)] = row_pattern_[at(--length)];
     }
     for (; top < n; ++top) {
-      const std::size_t j = at(pattern[at(top)]);
-      const Block x = inverse_diagonal_[j] * y[j];
-      y[j].setZero();
-      const std::size_t begin = at(l_start_[j]), end = begin + at(filled[j]);
-      for (std::size_t p = begin; p < end; ++p) y[at(rows_[p])].noalias() -= values_[p] * x;
+      const std::size_t j = at(row_pattern_[at(top)]);
+      const Block x = inverse_diagonal_[j] * y_[j];
+      y_[j].setZero();
+      const std::size_t begin = at(l_start_[j]), end = begin + at(filled_[j]);
+      for (std::size_t p = begin; p < end; ++p) y_[at(rows_[p])].noalias() -= values_[p] * x;
       pivot.noalias() -= x.transpose() * x;
       rows_[end] = k;
       values_[end] = x.transpose();
-      ++filled[j];
+      ++filled_[j];
     }
     const Eigen::LLT<Block> llt(pivot);
     if (llt.info() != Eigen::Success) return false;
@@ -73,10 +58,34 @@ bool BlockCholesky<B>::factorize(std::span<const int> sizes, std::span<const Ter
   return true;
 }
 
+template <int B>
+bool BlockCholesky<B>::analyzed_for(std::span<const int> sizes, std::span<const Term> terms) const {
+  return std::equal(sizes.begin(), sizes.end(), sizes_.begin(), sizes_.end()) &&
+         std::equal(terms.begin(), terms.end(), pattern_.begin(), pattern_.end(),
+                    [](const Term& t, const std::pair<int, int>& p) { return t.row == p.first && t.col == p.second; });
+}
+
 // The blocks' graph, its ordering, the elimination tree and the factor's column counts.
 template <int B>
-void BlockCholesky<B>::analyze(std::span<const Term> terms) {
-  const std::size_t n = sizes_.size();
+void BlockCholesky<B>::analyze(std::span<const int> sizes, std::span<const Term> terms) {
+  const std::size_t n = sizes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (sizes[i] < 1 || sizes[i] > B) {
+      throw std::invalid_argument("BlockCholesky: block " + std::to_string(i) + " has " + std::to_string(sizes[i]) +
+                                  " unknowns, not 1 to " + std::to_string(B));
+    }
+  }
+  for (const Term& t : terms) {
+    if (t.row < 0 || at(t.row) >= n || t.col < 0 || at(t.col) >= n) {
+      throw std::invalid_argument("BlockCholesky: a term at block (" + std::to_string(t.row) + ", " +
+                                  std::to_string(t.col) + ") is outside the " + std::to_string(n) + " blocks");
+    }
+  }
+  sizes_.assign(sizes.begin(), sizes.end());
+  starts_.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) starts_[i + 1] = starts_[i] + sizes_[i];
+  pattern_.clear();
+  for (const Term& t : terms) pattern_.emplace_back(t.row, t.col);
   std::vector<Eigen::Triplet<double>> graph;
   graph.reserve(n + terms.size());
   for (std::size_t j = 0; j < n; ++j) graph.emplace_back(static_cast<int>(j), static_cast<int>(j), 1.0);
@@ -103,6 +112,7 @@ void BlockCholesky<B>::analyze(std::span<const Term> terms) {
     a_start_[k + 1] = a_start_[k] + static_cast<int>(above[k].size()) + 1;
   }
   a_row_.resize(at(a_start_[n]));
+  a_value_.resize(a_row_.size());
   for (std::size_t k = 0; k < n; ++k) {
     std::copy(above[k].begin(), above[k].end(), a_row_.begin() + a_start_[k]);
     a_row_[at(a_start_[k + 1] - 1)] = static_cast<int>(k);
@@ -126,26 +136,33 @@ void BlockCholesky<B>::analyze(std::span<const Term> terms) {
   rows_.resize(at(l_start_[n]));
   values_.resize(rows_.size());
   inverse_diagonal_.resize(n);
-}
-
-template <int B>
-std::size_t BlockCholesky<B>::place_of(int row, int col) const {
-  const auto first = a_row_.begin() + a_start_[at(col)], last = a_row_.begin() + a_start_[at(col) + 1];
-  return static_cast<std::size_t>(std::lower_bound(first, last, row) - a_row_.begin());
+  y_.assign(n, Block::Zero());
+  mark_.resize(n);
+  row_pattern_.resize(n);
+  filled_.resize(n);
+  // Where each term goes: its block of A's upper triangle, transposed if it lies below.
+  term_at_.clear();
+  for (const Term& t : terms) {
+    const int r = place_[at(t.row)], c = place_[at(t.col)];
+    const int row = std::min(r, c), col = std::max(r, c);
+    const auto first = a_row_.begin() + a_start_[at(col)], last = a_row_.begin() + a_start_[at(col) + 1];
+    const int p = static_cast<int>(std::lower_bound(first, last, row) - a_row_.begin());
+    term_at_.push_back(r <= c ? p : ~p);
+  }
 }
 
 // The terms into A's upper blocks, each cut to its blocks' sizes; a block's padding (past its
 // unknowns) is the identity.
 template <int B>
 void BlockCholesky<B>::load(std::span<const Term> terms) {
-  a_value_.assign(a_row_.size(), Block::Zero());
-  for (const Term& t : terms) {
-    const int r = place_[at(t.row)], c = place_[at(t.col)];
-    const auto value = t.value.topLeftCorner(sizes_[at(t.row)], sizes_[at(t.col)]);
-    if (r <= c) {
-      a_value_[place_of(r, c)].topLeftCorner(sizes_[at(t.row)], sizes_[at(t.col)]) += value;
+  std::fill(a_value_.begin(), a_value_.end(), Block::Zero());
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    const Term& t = terms[k];
+    const int rows = sizes_[at(t.row)], cols = sizes_[at(t.col)];
+    if (term_at_[k] >= 0) {
+      a_value_[at(term_at_[k])].topLeftCorner(rows, cols) += t.value.topLeftCorner(rows, cols);
     } else {
-      a_value_[place_of(c, r)].topLeftCorner(sizes_[at(t.col)], sizes_[at(t.row)]) += value.transpose();
+      a_value_[at(~term_at_[k])].topLeftCorner(cols, rows) += t.value.topLeftCorner(rows, cols).transpose();
     }
   }
   for (std::size_t old = 0; old < sizes_.size(); ++old) {

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -45,7 +46,10 @@ class BlockCholesky {
 
   // Factorises the matrix of `terms` over blocks of sizes[i] unknowns (1 to B; block i's
   // unknowns follow block i - 1's). Returns false when a pivot block is not positive definite
-  // (A is not SPD to rounding); solve is then not to be called.
+  // (A is not SPD to rounding); solve is then not to be called. The ordering and the symbolic
+  // analysis are kept for the next call with the same sizes and the same (row, col) sequence
+  // of terms (an open-close iteration's solves, whose springs change but not which blocks
+  // they couple), and so is the storage.
   bool factorize(std::span<const int> sizes, std::span<const Term> terms);
 
   // Solves A x = b, after factorize returned true.
@@ -55,11 +59,13 @@ class BlockCholesky {
   std::size_t factor_blocks() const { return rows_.size(); }
 
  private:
-  void analyze(std::span<const Term> terms);
+  bool analyzed_for(std::span<const int> sizes, std::span<const Term> terms) const;
+  void analyze(std::span<const int> sizes, std::span<const Term> terms);
   void load(std::span<const Term> terms);
-  std::size_t place_of(int row, int col) const;  // (new numbering, row <= col) in a_row_
 
   std::vector<int> sizes_;
+  std::vector<std::pair<int, int>> pattern_;  // the terms' places the analysis was made for
+  std::vector<int> term_at_;                  // where each term goes in a_value_ (< 0: transposed, ~p)
   std::vector<Eigen::Index> starts_;  // block i's first unknown
   std::vector<int> order_, place_;    // order_[new] = old block, place_[old] = new
   std::vector<int> parent_;           // elimination tree (new numbering), -1 at a root
@@ -70,6 +76,10 @@ class BlockCholesky {
   // diagonal blocks (lower triangular), so that each solve with one is a product.
   std::vector<int> l_start_, rows_;
   std::vector<Block> values_, inverse_diagonal_;
+  // The factorisation's scratch: a dense block column, the row pattern, how far each column
+  // of L is filled.
+  std::vector<Block> y_;
+  std::vector<int> mark_, row_pattern_, filled_;
 };
 
 extern template class BlockCholesky<6>;

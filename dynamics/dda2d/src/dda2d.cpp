@@ -294,8 +294,7 @@ struct Dda2d::Impl {
   void solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                    const LinearModel& model, double damping, Eigen::VectorXd& delta) const;
   bool factorize_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
-                       const LinearModel& model, double damping, Eigen::VectorXd& rhs,
-                       BlockCholesky<6>& solver) const;
+                       const LinearModel& model, double damping, Eigen::VectorXd& rhs) const;
   std::vector<std::size_t> unstable_blocks(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                                            const LinearModel& model);
   double farthest_move(std::size_t i, const Eigen::VectorXd& d, const std::vector<Eigen::Index>& offset) const;
@@ -1137,6 +1136,7 @@ struct Dda2d::Impl::LinearModel {
   // body (-1: none) and the unknowns of each solver block.
   mutable std::vector<BlockCholesky<6>::Term> terms;
   mutable std::vector<int> block, sizes;
+  mutable BlockCholesky<6> solver;  // K's factor, its analysis kept while the lines stay
 };
 
 // The lines of the model at the current configuration: the pairs resting at the start and the
@@ -1200,19 +1200,18 @@ Vector6 generalized(const BlockState& b, Point2 at, Vector2 direction) {
 void Dda2d::Impl::solve_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
                               const LinearModel& model, double damping, Eigen::VectorXd& delta) const {
   Eigen::VectorXd rhs(delta.size());
-  BlockCholesky<6> solver;
-  const bool factored = factorize_model(moving, offset, model, damping, rhs, solver);
-  if (factored) delta = solver.solve(rhs);
+  const bool factored = factorize_model(moving, offset, model, damping, rhs);
+  if (factored) delta = model.solver.solve(rhs);
   if (!factored || !delta.allFinite()) {
     throw StabilityError("dda2d: the initial equilibrium's stiffness could not be solved (" +
                          std::to_string(delta.size()) + " unknowns)");
   }
 }
 
-// Assembles K (with the damping) by blocks and F into rhs (solve_model), and factorises K.
+// Assembles K (with the damping) by blocks and F into rhs (solve_model), and factorises K into
+// model.solver.
 bool Dda2d::Impl::factorize_model(const std::vector<char>& moving, const std::vector<Eigen::Index>& offset,
-                                  const LinearModel& model, double damping, Eigen::VectorXd& rhs,
-                                  BlockCholesky<6>& solver) const {
+                                  const LinearModel& model, double damping, Eigen::VectorXd& rhs) const {
   using Term = BlockCholesky<6>::Term;
   std::vector<Term>& terms = model.terms;
   std::vector<int>&block = model.block, &sizes = model.sizes;
@@ -1304,7 +1303,7 @@ bool Dda2d::Impl::factorize_model(const std::vector<char>& moving, const std::ve
       terms.push_back({static_cast<int>(b), static_cast<int>(b), (damping * diagonal[b]).asDiagonal().toDenseMatrix()});
     }
   }
-  return solver.factorize(sizes, terms);
+  return model.solver.factorize(sizes, terms);
 }
 
 // The open-close iteration of one Newton iteration: solve, then move each line's closed part to
@@ -1420,11 +1419,10 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
   LinearModel tangent;  // at the state reached: each line closed where it overlaps now
   tangent.lines = model.lines;
   for (LinearModel::Line& line : tangent.lines) line.part = line.now;
-  BlockCholesky<6> solver;
-  if (!factorize_model(moving, offset, tangent, 0.0, rhs, solver)) return {};
+  if (!factorize_model(moving, offset, tangent, 0.0, rhs)) return {};
   Eigen::VectorXd forces;
   gather(forces);
-  Eigen::VectorXd v = solver.solve(forces);
+  Eigen::VectorXd v = tangent.solver.solve(forces);
   const SettleState here{states, friction};
   double growth = 0.0;
   for (std::size_t k = 0; k < probe_iterations; ++k) {
@@ -1437,7 +1435,7 @@ std::vector<std::size_t> Dda2d::Impl::unstable_blocks(const std::vector<char>& m
     gather(moved);
     restore(here, moving);
     const Eigen::VectorXd jv = (moved - forces) / scale;
-    const Eigen::VectorXd w = v + solver.solve(jv);
+    const Eigen::VectorXd w = v + tangent.solver.solve(jv);
     growth = v.dot(w) > 0.0 ? largest_move(w) / most : 0.0;
     v = w;
   }
