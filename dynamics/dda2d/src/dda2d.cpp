@@ -1214,7 +1214,8 @@ bool Dda2d::Impl::factorize_model(const std::vector<char>& moving, const std::ve
                                   const LinearModel& model, double damping, Eigen::VectorXd& rhs) const {
   using Term = BlockCholesky<6>::Term;
   std::vector<Term>& terms = model.terms;
-  std::vector<int>&block = model.block, &sizes = model.sizes;
+  std::vector<int>& block = model.block;
+  std::vector<int>& sizes = model.sizes;
   terms.clear();
   sizes.clear();
   block.assign(bodies.size(), -1);
