@@ -67,8 +67,10 @@ BOOST_AUTO_TEST_CASE(dda3d_tracks_and_contacts_are_the_same_bytes_on_one_and_two
   const std::vector<std::string> files{"tracks.csv", "contacts.csv"};
   const auto one = outputs("dda3d", scene, 1, files, " --duration 0.02");
   const auto two = outputs("dda3d", scene, 2, files, " --duration 0.02");
-  // 18 blocks at t = 0, after 20 accepted steps and at the end (36 steps), and the header.
-  BOOST_TEST(lines(one[0]) == 1 + 3 * 18);
+  // The header, then 18 blocks at t = 0, every 20 accepted steps and at the end: at least three
+  // records of 18 rows.
+  BOOST_TEST((lines(one[0]) - 1) % 18 == 0u);
+  BOOST_TEST(lines(one[0]) >= 1 + 3 * 18);
   BOOST_TEST(lines(one[1]) > 1000u);
   BOOST_TEST((one[0] == two[0]), "tracks.csv differs between 1 and 2 threads");
   BOOST_TEST((one[1] == two[1]), "contacts.csv differs between 1 and 2 threads");

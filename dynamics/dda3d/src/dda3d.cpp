@@ -40,6 +40,10 @@ constexpr double degrees_per_radian = 180.0 / std::numbers::pi;
 // (of the scene's size) up to which blocks count as resting on each other at the start.
 constexpr double settle_regularization = 1.0e-9;
 constexpr double resting_gap = 1.0e-6;
+// The sliding start (sliding_start): its Coulomb iterations at most, and the change of every
+// slip direction (a unit vector) below which they end.
+constexpr int max_sliding_rounds = 12;
+constexpr double sliding_turn_tolerance = 1.0e-6;
 // The stability monitor's energy floor: every movable block's kinetic energy at this speed, m/s
 // (as in 2D), so that a run starting at rest has a budget.
 constexpr double energy_floor_speed = 1.0e-3;
@@ -589,9 +593,10 @@ struct Dda3d::Impl {
   bool replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>& di,
                const Eigen::Ref<const Eigen::VectorXd>& dj) const;
   void solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
-             const std::vector<char>* settling = nullptr, double* residual = nullptr) const;
+             const std::vector<char>* settling = nullptr, double* residual = nullptr, double tie = 1.0) const;
   void settle();
   SettleRound settle_round(const std::vector<char>& settling);
+  void sliding_start(std::vector<Constraint>& list, const std::vector<char>& settling, Eigen::VectorXd& d) const;
   double largest_displacement(const Eigen::VectorXd& d) const;
   std::pair<double, std::size_t> largest_rotation(const Eigen::VectorXd& d) const;
   void accept(std::vector<Constraint> list, const Eigen::VectorXd& d, std::size_t iterations, double numerical);
@@ -676,6 +681,20 @@ Dda3d::Impl::Impl(std::vector<Block3dSpec> specs, ContactLaw3d contact_law, Dda3
   start_contact = e.contact;
 }
 
+namespace {
+
+// The initial equilibrium's locked constraint: locked whatever the load, its spring keeps the
+// whole trial stretch of the increments d_i, d_j.
+void lock_whole_stretch(Constraint& k, const Eigen::VectorXd& di, const Eigen::VectorXd& dj) {
+  const Eigen::Vector3d& n = k.kinematics.normal;
+  const Eigen::Vector3d trial = k.state.shear + detail::relative_motion(k.kinematics, di, dj);
+  k.update.mode = detail::ContactMode::locked;
+  k.update.shear = trial - trial.dot(n) * n;
+  k.update.tangential_force = -k.law.kt * k.update.shear;
+}
+
+}  // namespace
+
 // The initial equilibrium (header; dynamics/common/equilibrium.hpp): rounds over the blocks
 // resting on a fixed block at the start, directly or through other resting blocks.
 void Dda3d::Impl::settle() {
@@ -731,15 +750,7 @@ SettleRound Dda3d::Impl::settle_round(const std::vector<char>& settling) {
       const auto dj = bb.dof > 0 ? Eigen::VectorXd(d.segment(static_cast<Eigen::Index>(bb.offset), bb.dof))
                                  : Eigen::VectorXd();
       k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
-      if (k.update.mode == detail::ContactMode::sliding) {
-        // Locked whatever the load: the spring keeps the whole trial stretch.
-        const Eigen::Vector3d& n = k.kinematics.normal;
-        const Eigen::Vector3d relative = detail::relative_motion(k.kinematics, di, dj);
-        const Eigen::Vector3d trial = k.state.shear + relative;
-        k.update.mode = detail::ContactMode::locked;
-        k.update.shear = trial - trial.dot(n) * n;
-        k.update.tangential_force = -k.law.kt * k.update.shear;
-      }
+      if (k.update.mode == detail::ContactMode::sliding) lock_whole_stretch(k, di, dj);
       // After half the iterations a closed contact stays closed: contacts at exact touch that
       // carry no load (the sides of stacked blocks) can alternate between a slight tension
       // closed and a slight penetration open; kept closed they start the run with that tension
@@ -785,6 +796,7 @@ SettleRound Dda3d::Impl::settle_round(const std::vector<char>& settling) {
     round.unsettled.push_back(i);
   }
   if (!round.unsettled.empty()) return round;
+  sliding_start(list, settling, d);
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (!settling[i]) continue;
     move(i, d.segment(static_cast<Eigen::Index>(blocks[i].offset), blocks[i].dof));
@@ -967,6 +979,56 @@ std::vector<std::pair<std::size_t, std::size_t>> Dda3d::Impl::candidate_pairs() 
   return pairs;
 }
 
+namespace {
+
+// A vertex inside a convex part has one exit (seed 001 §4.3: the face it entered by), and one
+// contact position has one contact (holds_of: the coincident vertices of cut blocks are one
+// corner). A vertex-face constraint not closed in the last list (open, closed ahead by Table 1,
+// or born closed now) is a second exit when, at its vertex, the pair carries closed constraints
+// on the face's part in another plane and none in the face's: a wedge's crest vertex, going down
+// its joint, passes below the plane of the slope's top face, and the slope's toe vertex passes
+// behind the plane of the wedge's free face, each by the slide alone while the joints hold it.
+// Closed, such a constraint carried weight the joints should and held the wedge. It is dropped.
+// (Edge-edge constraints are kept: a crossing that moved onto new edges continues a contact.)
+// `fresh` marks the constraints of `list` not closed in the last list.
+void drop_second_exits(double same_position, const std::vector<char>& fresh, std::vector<Constraint>& list) {
+  const auto face_side = [](const Constraint& k) -> std::optional<kernel::BlockRole> {
+    if (k.geometry.type != kernel::ConstraintType::vertex_face) return std::nullopt;
+    if (k.geometry.plane.kind == kernel::PlaneSource::Kind::cp_face) return kernel::BlockRole::cp;
+    if (k.geometry.plane.kind == kernel::PlaneSource::Kind::tp_face) return kernel::BlockRole::tp;
+    return std::nullopt;
+  };
+  const auto part_on = [](const Constraint& k, kernel::BlockRole side) {
+    return side == kernel::BlockRole::cp ? k.geometry.cp_feature.part : k.geometry.tp_feature.part;
+  };
+  const auto second = [&](std::size_t i) {
+    const Constraint& k = list[i];
+    const std::optional<kernel::BlockRole> side = face_side(k);
+    if (!side) return false;
+    bool other_plane = false;
+    for (std::size_t j = 0; j < list.size(); ++j) {
+      const Constraint& c = list[j];
+      if (fresh[j] || part_on(c, *side) != part_on(k, *side) ||
+          (vec(c.geometry.point_tp) - vec(k.geometry.point_tp)).norm() > same_position) {
+        continue;
+      }
+      if (vec(c.geometry.normal).dot(vec(k.geometry.normal)) >= std::cos(transfer_angle)) return false;
+      other_plane = true;
+    }
+    return other_plane;
+  };
+  std::vector<char> drop(list.size(), 0);
+  for (std::size_t i = 0; i < list.size(); ++i) drop[i] = fresh[i] && second(i);
+  std::vector<Constraint> kept;
+  kept.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!drop[i]) kept.push_back(std::move(list[i]));
+  }
+  list = std::move(kept);
+}
+
+}  // namespace
+
 // The constraints of the pair (a, b) (step 1 of the header); `earlier` are the pair's constraints
 // in the last list, `previous` all of them by key; `dropped` receives the deepest it dropped.
 std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t b, std::span<const Constraint> earlier,
@@ -974,6 +1036,7 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
                                                       bool at_start, Dropped& dropped) const {
   const Block &ba = blocks[a], &bb = blocks[b];
   std::vector<Constraint> out;
+  std::vector<char> fresh;  // not closed in the last list: open, closed ahead, or born closed now
   std::vector<kernel::ContactConstraint> found = kernel::with_policy(law.policy, [&](auto policy) {
     using Policy = decltype(policy);
     return kernel::contact_constraints<Policy>(std::span<const ConvexPolyhedron>(ba.parts),
@@ -1064,8 +1127,10 @@ std::vector<Constraint> Dda3d::Impl::pair_constraints(std::size_t a, std::size_t
       // velocity; the open-close iteration takes it from the solution after that (eq. 8).
       if (const auto v = kernel::sliding_direction(c.normal, point(velocity))) k.state.sliding_direction = vec(*v);
     }
+    fresh.push_back(!inherited || k.state.mode == detail::ContactMode::open || k.closing);
     out.push_back(std::move(k));
   }
+  drop_second_exits(same_position, fresh, out);
   return out;
 }
 
@@ -1123,10 +1188,11 @@ std::vector<Constraint> Dda3d::Impl::detect(bool at_start) {
 // `settling` (the initial equilibrium, header): the blocks it marks are solved for static
 // equilibrium (no inertia: K D = F_g - V σ + F_c, with a stiffness of settle_regularization times
 // the inertia term tying them to where they are, so that a mode their contacts leave free is
-// found as a large displacement instead of a singular matrix); the others keep their place.
+// found as a large displacement instead of a singular matrix; `tie` scales it); the others keep
+// their place.
 // `residual`, when given: |A d - rhs| / |rhs| of the solved system (0 when rhs = 0).
 void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d, double& numerical,
-                        const std::vector<char>* settling, double* residual) const {
+                        const std::vector<char>* settling, double* residual, double tie) const {
   const auto n = static_cast<Eigen::Index>(unknowns);
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
@@ -1150,7 +1216,7 @@ void Dda3d::Impl::solve(const std::vector<Constraint>& list, Eigen::VectorXd& d,
     Eigen::VectorXd f = detail::gravity_load(b.mass, g).head(b.dof) + (2.0 / h) * b.mass_matrix * b.velocity;
     if (settling != nullptr) {
       if (!(*settling)[i]) continue;
-      k *= settle_regularization;
+      k *= tie * settle_regularization;
       f = detail::gravity_load(b.mass, g).head(b.dof);
     }
     springs[i] = Eigen::MatrixXd::Zero(b.dof, b.dof);
@@ -1399,6 +1465,125 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
   const Eigen::Vector3d slide = k.state.sliding_direction - k.state.sliding_direction.dot(n) * n;
   k.state.sliding_direction = slide.norm() > 0.0 ? Eigen::Vector3d(slide.normalized()) : Eigen::Vector3d::Zero();
   return true;
+}
+
+namespace {
+
+double coulomb_cap(const detail::ContactLaw3d& law, double normal_force, double area) {
+  return std::tan(law.friction_angle_deg * (std::numbers::pi / 180.0)) * std::max(normal_force, 0.0) +
+         law.cohesion * area;
+}
+
+}  // namespace
+
+// The start of the blocks friction cannot hold where they rest (header, "Initial equilibrium").
+// The locked solve `d` of settle_round leaves them on springs stretched past their Coulomb cap,
+// and in a direction that is not that of the slide; released so, a wedge slid with too little
+// friction for its first 30-100 ms (+8.8 % in 1 s on the family's slowest slide at kn = 10¹⁰).
+// Here they start in their sliding state instead:
+//  - the constraints locked past the cap slide: no tangential spring, the friction at the cap
+//    as a load along the relative slip (seed 001 eq. 30-32);
+//  - the solve's regularization (settle_regularization) ties a block only weakly to its place,
+//    so a block that slides is found sliding by displacement c / tie along the mode its
+//    contacts leave free, and the slip of each constraint in that solve gives its direction;
+//  - the constraints still locked that pass their cap in that solve join, and the solve is
+//    repeated with the new directions until none joins and no direction turns (a Coulomb
+//    iteration: 3-5 solves on the wedges of the family);
+//  - two solves with the tie doubled remove the free mode: D(1) = D_e + c and D(2) = D_e + c / 2
+//    give D_e = 2 D(2) - D(1), the elastic part that sets the normal forces. Along the free mode
+//    each block keeps its place of the locked solve (the slide's position is not the
+//    equilibrium's to choose, and the blocks around it were checked there);
+//  - the sliding constraints start at their cap along their slip.
+// A block whose contacts hold it once some slide (its free displacement stays within the step
+// limit) keeps the Coulomb-consistent static state D_e.
+void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector<char>& settling,
+                                Eigen::VectorXd& d) const {
+  std::vector<char> sliding(list.size(), 0);
+  std::vector<Constraint> trial = list;
+  bool any = false;
+  for (std::size_t c = 0; c < list.size(); ++c) {
+    const Constraint& k = list[c];
+    if (k.update.mode == detail::ContactMode::open ||
+        !(k.law.kt * k.update.shear.norm() > coulomb_cap(k.law, k.update.normal_force, k.kinematics.area))) {
+      continue;
+    }
+    sliding[c] = 1;
+    any = true;
+    trial[c].state.mode = detail::ContactMode::sliding;
+    trial[c].state.normal_force = k.update.normal_force;
+    trial[c].state.sliding_direction = k.update.shear.normalized();
+  }
+  if (!any) return;
+  const auto of = [&](const Eigen::VectorXd& x, std::size_t i) {
+    const Block& b = blocks[i];
+    return b.dof > 0 ? Eigen::VectorXd(x.segment(static_cast<Eigen::Index>(b.offset), b.dof)) : Eigen::VectorXd();
+  };
+  Eigen::VectorXd loose, tight, elastic;
+  double unused = 0.0;
+  for (int round = 0; round < max_sliding_rounds; ++round) {
+    solve(trial, loose, unused, &settling, nullptr, 1.0);
+    solve(trial, tight, unused, &settling, nullptr, 2.0);
+    if (!loose.allFinite() || !tight.allFinite()) return;  // the locked start stands
+    elastic = 2.0 * tight - loose;
+    bool joined = false;
+    double turned = 0.0;  // the largest change of a slip direction
+    for (std::size_t c = 0; c < trial.size(); ++c) {
+      Constraint& k = trial[c];
+      if (k.state.mode == detail::ContactMode::open) continue;
+      const Eigen::Vector3d& n = k.kinematics.normal;
+      if (sliding[c]) {
+        const Eigen::Vector3d slip = detail::relative_motion(k.kinematics, of(loose, k.a), of(loose, k.b));
+        const Eigen::Vector3d along = slip - slip.dot(n) * n;
+        if (along.norm() > 0.0) {
+          turned = std::max(turned, (along.normalized() - k.state.sliding_direction).norm());
+          k.state.sliding_direction = along.normalized();
+        }
+        const Eigen::Vector3d moved = detail::relative_motion(k.kinematics, of(elastic, k.a), of(elastic, k.b));
+        k.state.normal_force = -k.law.kn * (k.kinematics.gap + n.dot(moved) - k.state.offset);
+        continue;
+      }
+      const detail::ContactUpdate3d u = detail::evaluate_contact(k.kinematics, k.state, k.law, of(loose, k.a), of(loose, k.b));
+      if (u.mode != detail::ContactMode::sliding) continue;
+      sliding[c] = 1;
+      joined = true;
+      k.state.mode = detail::ContactMode::sliding;
+      k.state.normal_force = u.normal_force;
+      k.state.sliding_direction = u.sliding_direction;
+    }
+    if (!joined && turned < sliding_turn_tolerance) break;
+  }
+  const double limit = params.max_displacement_ratio * size;
+  Eigen::VectorXd start = elastic;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!settling[i] || blocks[i].dof == 0) continue;
+    const Eigen::VectorXd free = of(loose, i) - of(tight, i);  // c / 2
+    if (!(2.0 * free.head(3).norm() > limit)) continue;       // held, some of its contacts sliding
+    const Eigen::VectorXd back = of(d, i) - of(elastic, i);
+    start.segment(static_cast<Eigen::Index>(blocks[i].offset), blocks[i].dof) += free * (free.dot(back) / free.squaredNorm());
+  }
+  // A mode the contacts leave almost free (a stiffness near the tie's) is not removed so, and
+  // would move a block's vertex farther than the step limit or the locked solve: then the
+  // locked start stands.
+  if (!(largest_displacement(start) <= std::max(limit, largest_displacement(d)))) return;
+  d = start;
+  for (std::size_t c = 0; c < list.size(); ++c) {
+    Constraint& k = list[c];
+    const Eigen::VectorXd di = of(d, k.a), dj = of(d, k.b);
+    if (!sliding[c]) {
+      k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
+      if (k.update.mode == detail::ContactMode::sliding) lock_whole_stretch(k, di, dj);
+      continue;
+    }
+    const double normal = trial[c].state.normal_force;
+    k.update = {};
+    k.update.gap = k.kinematics.gap + k.kinematics.normal.dot(detail::relative_motion(k.kinematics, di, dj));
+    if (!(normal > 0.0)) continue;  // the slide lifts it off: open
+    k.update.mode = detail::ContactMode::sliding;
+    k.update.normal_force = normal;
+    k.update.sliding_direction = trial[c].state.sliding_direction;
+    k.update.shear = (coulomb_cap(k.law, normal, k.kinematics.area) / k.law.kt) * k.update.sliding_direction;
+    k.update.tangential_force = -k.law.kt * k.update.shear;
+  }
 }
 
 // The error's account of the contact an open-close iteration could not settle.

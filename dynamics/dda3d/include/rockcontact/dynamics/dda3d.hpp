@@ -71,9 +71,14 @@
 // solves for the static equilibrium of the blocks resting on a fixed block at the start,
 // directly or through other resting blocks (gaps up to 10⁻⁶ of the scene's size count): one
 // implicit solve without inertia, K D = F_g - V σ + F_c, every closed constraint locked
-// whatever its friction, the open-close iteration deciding which close. The blocks move there
-// with their stresses and springs loaded and keep their initial velocities; the energies'
-// references start after it. A block its resting contacts do not hold (the solve would move it
+// whatever its friction, the open-close iteration deciding which close. Where that leaves
+// springs stretched past their Coulomb cap (a block friction alone cannot hold, a wedge below
+// its factor of safety), those contacts slide and the solve is repeated until no further
+// contact passes its cap and the slip directions settle: the blocks start in their sliding
+// state, with the normal forces of the slide and the friction at the cap along the slip, where
+// the locked solve put them along the slide (a mass whose contacts then leave a mode almost free
+// keeps the locked start). The blocks move there with their stresses and springs loaded and
+// keep their initial velocities; the energies' references start after it. A block its resting contacts do not hold (the solve would move it
 // farther than a step may: it topples, slides or is unsupported), or whose contacts the
 // open-close iteration cannot settle, has no static state there: automatic starts it (and the
 // blocks resting on a support only through it) from its given state, names it in
