@@ -70,11 +70,6 @@ void add_spring(const ContactKinematics3d& kin, const Vector3d& e, double s0, do
   out.f_j -= (root * s0) * g_j;
 }
 
-double friction_limit(const ContactLaw3d& law, double normal_force, double area) {
-  const double tan_phi = std::tan(law.friction_angle_deg * (std::numbers::pi / 180.0));
-  return tan_phi * std::max(normal_force, 0.0) + law.cohesion * area;
-}
-
 // Closed -> locked or sliding: the elastoplastic return mapping of the trial stretch.
 void judge_tangential(const ContactLaw3d& law, double area, const Vector3d& trial,
                       ContactUpdate3d& out) {
@@ -91,6 +86,11 @@ void judge_tangential(const ContactLaw3d& law, double area, const Vector3d& tria
 }
 
 }  // namespace
+
+double friction_limit(const ContactLaw3d& law, double normal_force, double area) {
+  const double tan_phi = std::tan(law.friction_angle_deg * (std::numbers::pi / 180.0));
+  return tan_phi * std::max(normal_force, 0.0) + law.cohesion * area;
+}
 
 void check_contact_law3d(const ContactLaw3d& law) {
   require(std::isfinite(law.kn) && law.kn > 0.0, "kn", "finite and > 0 (N/m)", law.kn);

@@ -166,6 +166,10 @@ struct ContactUpdate3d {
   Eigen::Vector3d sliding_direction = Eigen::Vector3d::Zero();  // v for the next iteration
 };
 
+// The Coulomb cap of a closed constraint, N: tan φ times its compressive normal force plus the
+// cohesion over its contact area (eq. 30).
+double friction_limit(const ContactLaw3d& law, double normal_force, double area);
+
 // The mode decision of Table 2 and the forces, for the increments d_i (n_i) and d_j (n_j) of the
 // solve that used `state`. An open -> closed contact is locked with the stretch P r_acc and no
 // tangential force yet: its spring enters with the next iteration.

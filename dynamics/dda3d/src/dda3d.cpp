@@ -1467,15 +1467,6 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
   return true;
 }
 
-namespace {
-
-double coulomb_cap(const detail::ContactLaw3d& law, double normal_force, double area) {
-  return std::tan(law.friction_angle_deg * (std::numbers::pi / 180.0)) * std::max(normal_force, 0.0) +
-         law.cohesion * area;
-}
-
-}  // namespace
-
 // The start of the blocks friction cannot hold where they rest (header, "Initial equilibrium").
 // The locked solve `d` of settle_round leaves them on springs stretched past their Coulomb cap,
 // and in a direction that is not that of the slide; released so, a wedge slid with too little
@@ -1488,7 +1479,9 @@ double coulomb_cap(const detail::ContactLaw3d& law, double normal_force, double 
 //    contacts leave free, and the slip of each constraint in that solve gives its direction;
 //  - the constraints still locked that pass their cap in that solve join, and the solve is
 //    repeated with the new directions until none joins and no direction turns (a Coulomb
-//    iteration: 3-5 solves on the wedges of the family);
+//    iteration: 3-5 solves on the wedges of the family; at most max_sliding_rounds, after
+//    which the last round's state starts the blocks: a block at the margin, whose net force
+//    along the line nearly vanishes, can turn its slip back and forth, docs/validation.md);
 //  - two solves with the tie doubled remove the free mode: D(1) = D_e + c and D(2) = D_e + c / 2
 //    give D_e = 2 D(2) - D(1), the elastic part that sets the normal forces. Along the free mode
 //    each block keeps its place of the locked solve (the slide's position is not the
@@ -1504,7 +1497,7 @@ void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector
   for (std::size_t c = 0; c < list.size(); ++c) {
     const Constraint& k = list[c];
     if (k.update.mode == detail::ContactMode::open ||
-        !(k.law.kt * k.update.shear.norm() > coulomb_cap(k.law, k.update.normal_force, k.kinematics.area))) {
+        !(k.law.kt * k.update.shear.norm() > detail::friction_limit(k.law, k.update.normal_force, k.kinematics.area))) {
       continue;
     }
     sliding[c] = 1;
@@ -1581,7 +1574,7 @@ void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector
     k.update.mode = detail::ContactMode::sliding;
     k.update.normal_force = normal;
     k.update.sliding_direction = trial[c].state.sliding_direction;
-    k.update.shear = (coulomb_cap(k.law, normal, k.kinematics.area) / k.law.kt) * k.update.sliding_direction;
+    k.update.shear = (detail::friction_limit(k.law, normal, k.kinematics.area) / k.law.kt) * k.update.sliding_direction;
     k.update.tangential_force = -k.law.kt * k.update.shear;
   }
 }

@@ -74,7 +74,8 @@
 // whatever its friction, the open-close iteration deciding which close. Where that leaves
 // springs stretched past their Coulomb cap (a block friction alone cannot hold, a wedge below
 // its factor of safety), those contacts slide and the solve is repeated until no further
-// contact passes its cap and the slip directions settle: the blocks start in their sliding
+// contact passes its cap and the slip directions settle (at most 12 times; a block at the margin
+// may not settle, and starts from the last): the blocks start in their sliding
 // state, with the normal forces of the slide and the friction at the cap along the slip, where
 // the locked solve put them along the slide (a mass whose contacts then leave a mode almost free
 // keeps the locked start). The blocks move there with their stresses and springs loaded and
