@@ -992,6 +992,11 @@ namespace {
 // (Edge-edge constraints are kept: a crossing that moved onto new edges continues a contact.)
 // `fresh` marks the constraints of `list` not closed in the last list.
 void drop_second_exits(double same_position, const std::vector<char>& fresh, std::vector<Constraint>& list) {
+  // Most pairs of a step have all their constraints carried, or (newly met) none.
+  if (std::find(fresh.begin(), fresh.end(), 0) == fresh.end() ||
+      std::find(fresh.begin(), fresh.end(), 1) == fresh.end()) {
+    return;
+  }
   const auto face_side = [](const Constraint& k) -> std::optional<kernel::BlockRole> {
     if (k.geometry.type != kernel::ConstraintType::vertex_face) return std::nullopt;
     if (k.geometry.plane.kind == kernel::PlaneSource::Kind::cp_face) return kernel::BlockRole::cp;
