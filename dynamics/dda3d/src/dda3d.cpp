@@ -44,6 +44,9 @@ constexpr double resting_gap = 1.0e-6;
 // slip direction (a unit vector) below which they end.
 constexpr int max_sliding_rounds = 12;
 constexpr double sliding_turn_tolerance = 1.0e-6;
+// The sliding start's held contacts (sliding_start) slide when their friction passes the cap by
+// more than this fraction of it.
+constexpr double friction_tolerance = 1.0e-3;
 // The stability monitor's energy floor: every movable block's kinetic energy at this speed, m/s
 // (as in 2D), so that a run starting at rest has a budget.
 constexpr double energy_floor_speed = 1.0e-3;
@@ -1485,8 +1488,13 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
 //  - the constraints still locked that pass their cap in that solve join, and the solve is
 //    repeated with the new directions until none joins and no direction turns (a Coulomb
 //    iteration: 3-5 solves on the wedges of the family; at most max_sliding_rounds, after
-//    which the last round's state starts the blocks: a block at the margin, whose net force
-//    along the line nearly vanishes, can turn its slip back and forth, docs/validation.md);
+//    which the last round's state starts the blocks);
+//  - a block at the margin, whose friction at the cap would exceed the load that drives it,
+//    turns its slip back at every round: after two turns its contacts lock, their springs
+//    holding the friction against the driving load, and the next solve relaxes them to the
+//    friction it needs; those the relaxation takes past their cap slide (without this, the
+//    family's factors of safety came out 1-2 % low at ten times the default kn: trials at 99 %
+//    of the factor slid from a start on friction pushing the block down the slope);
 //  - two solves with the tie doubled remove the free mode: D(1) = D_e + c and D(2) = D_e + c / 2
 //    give D_e = 2 D(2) - D(1), the elastic part that sets the normal forces. Along the free mode
 //    each block keeps its place of the locked solve (the slide's position is not the
@@ -1496,7 +1504,11 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
 // limit) keeps the Coulomb-consistent static state D_e.
 void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector<char>& settling,
                                 Eigen::VectorXd& d) const {
-  std::vector<char> sliding(list.size(), 0);
+  std::vector<char> sliding(list.size(), 0), held(list.size(), 0);
+  std::vector<int> reversals(list.size(), 0);            // of the slip, in successive rounds
+  std::vector<Eigen::Vector3d> last_slip(list.size());   // the slip of the last round
+  std::vector<Eigen::Vector3d> last_friction(list.size());  // the friction that solve applied
+  std::vector<Eigen::Vector3d> last_moved(list.size());  // and its tangential motion, of D_e
   std::vector<Constraint> trial = list;
   bool any = false;
   for (std::size_t c = 0; c < list.size(); ++c) {
@@ -1529,15 +1541,52 @@ void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector
       Constraint& k = trial[c];
       if (k.state.mode == detail::ContactMode::open) continue;
       const Eigen::Vector3d& n = k.kinematics.normal;
-      if (sliding[c]) {
+      if (sliding[c] || held[c]) {
+        const Eigen::Vector3d moved = detail::relative_motion(k.kinematics, of(elastic, k.a), of(elastic, k.b));
+        const Eigen::Vector3d moved_along = moved - moved.dot(n) * n;
+        const double normal = -k.law.kn * (k.kinematics.gap + n.dot(moved) - k.state.offset);
+        if (held[c]) {
+          // A held contact past its cap (the normal forces move as the others relax) slides,
+          // its friction at the cap along the stretch it had: the others hold the block.
+          const Eigen::Vector3d stretch = k.state.shear + moved_along;
+          if (k.state.mode == detail::ContactMode::locked &&
+              k.law.kt * stretch.norm() > detail::friction_limit(k.law, normal, k.kinematics.area) * (1.0 + friction_tolerance)) {
+            k.state.mode = detail::ContactMode::sliding;
+            k.state.sliding_direction = stretch.normalized();
+            joined = true;
+          }
+          k.state.normal_force = normal;
+          continue;
+        }
         const Eigen::Vector3d slip = detail::relative_motion(k.kinematics, of(loose, k.a), of(loose, k.b));
         const Eigen::Vector3d along = slip - slip.dot(n) * n;
-        if (along.norm() > 0.0) {
-          turned = std::max(turned, (along.normalized() - k.state.sliding_direction).norm());
-          k.state.sliding_direction = along.normalized();
+        // The friction this round's solve applied.
+        const Eigen::Vector3d friction =
+            detail::friction_limit(k.law, k.state.normal_force, k.kinematics.area) * k.state.sliding_direction;
+        k.state.normal_force = normal;
+        if (!(along.norm() > 0.0)) continue;
+        reversals[c] = along.dot(k.state.sliding_direction) < 0.0 ? reversals[c] + 1 : 0;
+        if (reversals[c] >= 2) {
+          // Friction at the cap turns the slip back whichever way it is taken: the load that
+          // drives the block is below the friction its contacts can carry, and it is held at
+          // the margin. The two slips' sum is the driving load's (the friction's parts cancel).
+          // Of the two rounds, the one whose friction resisted it was in equilibrium but along
+          // the slide; the contact locks with its spring holding that friction at that round's
+          // place, and the next solve relaxes the springs to the friction the block needs.
+          const Eigen::Vector3d drive = (along + last_slip[c]).normalized();
+          const bool now = drive.dot(k.state.sliding_direction) > 0.0;
+          sliding[c] = 0;
+          held[c] = 1;
+          joined = true;  // the state changed: solve again
+          k.state.mode = detail::ContactMode::locked;
+          k.state.shear = (now ? friction : last_friction[c]) / k.law.kt - (now ? moved_along : last_moved[c]);
+          continue;
         }
-        const Eigen::Vector3d moved = detail::relative_motion(k.kinematics, of(elastic, k.a), of(elastic, k.b));
-        k.state.normal_force = -k.law.kn * (k.kinematics.gap + n.dot(moved) - k.state.offset);
+        last_slip[c] = along;
+        last_friction[c] = friction;
+        last_moved[c] = moved_along;
+        turned = std::max(turned, (along.normalized() - k.state.sliding_direction).norm());
+        k.state.sliding_direction = along.normalized();
         continue;
       }
       const detail::ContactUpdate3d u = detail::evaluate_contact(k.kinematics, k.state, k.law, of(loose, k.a), of(loose, k.b));
@@ -1567,7 +1616,8 @@ void Dda3d::Impl::sliding_start(std::vector<Constraint>& list, const std::vector
   for (std::size_t c = 0; c < list.size(); ++c) {
     Constraint& k = list[c];
     const Eigen::VectorXd di = of(d, k.a), dj = of(d, k.b);
-    if (!sliding[c]) {
+    if (trial[c].state.mode != detail::ContactMode::sliding) {
+      if (held[c]) k.state.shear = trial[c].state.shear;
       k.update = detail::evaluate_contact(k.kinematics, k.state, k.law, di, dj);
       if (k.update.mode == detail::ContactMode::sliding) lock_whole_stretch(k, di, dj);
       continue;

@@ -74,11 +74,13 @@
 // whatever its friction, the open-close iteration deciding which close. Where that leaves
 // springs stretched past their Coulomb cap (a block friction alone cannot hold, a wedge below
 // its factor of safety), those contacts slide and the solve is repeated until no further
-// contact passes its cap and the slip directions settle (at most 12 times; a block at the margin
-// may not settle, and starts from the last): the blocks start in their sliding
-// state, with the normal forces of the slide and the friction at the cap along the slip, where
-// the locked solve put them along the slide (a mass whose contacts then leave a mode almost free
-// keeps the locked start). The blocks move there with their stresses and springs loaded and
+// contact passes its cap and the slip directions settle (at most 12 times): the blocks start
+// in their sliding state, with the normal forces of the slide and the friction at the cap along
+// the slip, where the locked solve put them along the slide (a mass whose contacts then leave a
+// mode almost free keeps the locked start). A block at the margin, whose slip turns back at every
+// repetition (its friction at the cap exceeds the load along the slide), is held: its contacts
+// lock with the friction that resisted the load and relax to what it needs, those then past
+// their cap sliding. The blocks move there with their stresses and springs loaded and
 // keep their initial velocities; the energies' references start after it. A block its resting contacts do not hold (the solve would move it
 // farther than a step may: it topples, slides or is unsupported), or whose contacts the
 // open-close iteration cannot settle, has no static state there: automatic starts it (and the
