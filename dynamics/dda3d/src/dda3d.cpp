@@ -1493,8 +1493,8 @@ bool Dda3d::Impl::replane(Constraint& k, const Eigen::Ref<const Eigen::VectorXd>
 //    turns its slip back at every round: after two turns its contacts lock, their springs
 //    holding the friction against the driving load, and the next solve relaxes them to the
 //    friction it needs; those the relaxation takes past their cap slide (without this, the
-//    family's factors of safety came out 1-2 % low at ten times the default kn: trials at 99 %
-//    of the factor slid from a start on friction pushing the block down the slope);
+//    family's factors of safety came out up to 0.93 % low at ten times the default kn: trials
+//    at 99 % of the factor slid from a start on friction pushing the block down the slope);
 //  - two solves with the tie doubled remove the free mode: D(1) = D_e + c and D(2) = D_e + c / 2
 //    give D_e = 2 D(2) - D(1), the elastic part that sets the normal forces. Along the free mode
 //    each block keeps its place of the locked solve (the slide's position is not the
